@@ -1,0 +1,95 @@
+// The standalone data-association problem (DESIGN.md §4): a strategy can be called, tested and benchmarked
+// without a filter. The engine builds one per particle per scan; `arbor associate` reads one from a file.
+#ifndef ARBOR_CORE_ASSOCIATION_ASSOCIATION_PROBLEM_H_
+#define ARBOR_CORE_ASSOCIATION_ASSOCIATION_PROBLEM_H_
+
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/engine/landmark.h"
+#include "core/math/eigen_types.h"
+
+namespace arbor {
+
+// Decisions other than a landmark id.
+inline constexpr LandmarkId kNewLandmark = -1;  // start a new (provisional) landmark
+inline constexpr LandmarkId kSpurious = -2;     // clutter: neither paired nor used to start a landmark
+
+struct AssociationMeasurement {
+  Vec2 z;  // (range [m], bearing [rad]) in the robot frame
+  float signature = std::numeric_limits<float>::quiet_NaN();
+};
+
+// A landmark that may have produced some of the measurements, with everything its prediction needs.
+struct AssociationCandidate {
+  LandmarkId id = kNoLandmark;
+  Vec2 z_hat;           // predicted measurement h(x, m_j)
+  Mat2 S;               // individual innovation covariance H_j Sigma_j H_j^T + R (pose part excluded)
+  Mat23 H_pose;         // d h / d pose: couples candidates through the pose covariance P
+  Vec2 position;        // landmark mean in the world frame (pose-free strategies use it)
+  Mat2 position_cov;    // Sigma_j
+  float signature = std::numeric_limits<float>::quiet_NaN();
+  LocalitySet locality;
+};
+
+struct AssociationProblem {
+  std::vector<AssociationMeasurement> measurements;
+  std::vector<AssociationCandidate> candidates;  // ascending id
+  Mat2 R = Mat2::Identity();                     // measurement noise
+  Mat3 P = Mat3::Zero();                         // pose covariance: zero for a sampled pose (FastSLAM 1.0)
+  double signature_sigma = std::numeric_limits<double>::quiet_NaN();  // NaN: signatures are not compared
+  // Optional: the joint covariance of all predicted measurements (2N x 2N, R on the diagonal blocks), as
+  // given by the exchange format. When non-empty it replaces S, H_pose and P.
+  Eigen::MatrixXd joint_covariance;
+
+  // Covariance between the innovations of candidates i and j (2x2): S_i + H_i P H_i^T on the diagonal,
+  // H_i P H_j^T off it.
+  Mat2 innovation_covariance(int i, int j) const {
+    if (joint_covariance.size() > 0) return joint_covariance.block<2, 2>(2 * i, 2 * j);
+    Mat2 block = candidates[i].H_pose * P * candidates[j].H_pose.transpose();
+    if (i == j) block += candidates[i].S;
+    return block;
+  }
+};
+
+struct AssociationStats {
+  std::int64_t hypotheses = 0;  // search-tree nodes visited
+  std::int64_t tests = 0;       // compatibility tests run
+};
+
+struct AssociationResult {
+  std::vector<LandmarkId> pairing;  // one per measurement: a candidate id, kNewLandmark or kSpurious
+  AssociationStats stats;
+};
+
+// Options shared by the strategies; each reads what it needs.
+struct AssociationOptions {
+  double gate_probability = 0.99;    // chi-square gate, individual and joint
+  double new_landmark_probability = 0.999;  // outside this gate of every candidate a measurement starts a landmark
+  int locality_capacity = LocalitySet::kCapacity;
+  std::int64_t max_hypotheses = 1'000'000;  // search budget for the tree searches
+};
+
+// The AssociationStrategy concept. Strategies are stateless apart from their options; solve() is called
+// concurrently from many particles, each thread with its own Scratch.
+//   A a(options);  typename A::Scratch s;  a.solve(problem, s, result);  A::kName
+// Known association (ground-truth ids) is the strategy with kUsesGroundTruth = true: the engine pairs by the
+// scenario's ids and never calls its solve().
+template <class A>
+concept AssociationStrategy = std::constructible_from<A, const AssociationOptions&> &&
+    std::default_initializable<typename A::Scratch> &&
+    requires(const A a, const AssociationProblem& p, typename A::Scratch& s, AssociationResult& r) {
+      a.solve(p, s, r);
+      { A::kName } -> std::convertible_to<std::string_view>;
+      { A::kUsesGroundTruth } -> std::convertible_to<bool>;
+    };
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ASSOCIATION_ASSOCIATION_PROBLEM_H_

@@ -1,0 +1,53 @@
+// Atomic whole-file writes and durable appends (see atomic_file.h).
+#include "core/io/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <fmt/core.h>
+
+#include "core/io/input_error.h"
+
+namespace arbor {
+namespace {
+
+void write_all(int fd, std::string_view text, const std::string& path) {
+  while (!text.empty()) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw InputError(path, 0, "", fmt::format("write failed: {}", std::strerror(errno)));
+    }
+    text.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+}  // namespace
+
+void write_file_atomically(const std::string& path, std::string_view text) {
+  const std::filesystem::path target(path);
+  if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
+  const std::string temp = fmt::format("{}.tmp.{}", path, ::getpid());
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw InputError(path, 0, "", fmt::format("cannot write: {}", std::strerror(errno)));
+  write_all(fd, text, path);
+  ::fsync(fd);
+  ::close(fd);
+  if (std::rename(temp.c_str(), path.c_str()) != 0)
+    throw InputError(path, 0, "", fmt::format("cannot rename into place: {}", std::strerror(errno)));
+}
+
+void append_line_durably(const std::string& path, std::string_view text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  if (fd < 0) throw InputError(path, 0, "", fmt::format("cannot append: {}", std::strerror(errno)));
+  write_all(fd, text, path);
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace arbor

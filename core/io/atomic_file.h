@@ -1,0 +1,20 @@
+// Whole-file writes that are atomic: write to a temporary file beside the target, flush, rename.
+#ifndef ARBOR_CORE_IO_ATOMIC_FILE_H_
+#define ARBOR_CORE_IO_ATOMIC_FILE_H_
+
+#include <string>
+#include <string_view>
+
+namespace arbor {
+
+// Replaces path's contents with text; readers see either the old file or the new one, never a mix.
+// Throws InputError when the directory cannot be written.
+void write_file_atomically(const std::string& path, std::string_view text);
+
+// Appends text (one or more complete lines) with a single write() on an O_APPEND descriptor followed by
+// fsync, so a killed process leaves either the whole row or none of it.
+void append_line_durably(const std::string& path, std::string_view text);
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_IO_ATOMIC_FILE_H_

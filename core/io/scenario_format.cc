@@ -1,0 +1,230 @@
+// Scenario text format reader and writer. The grammar is documented in docs/scenario_format.md.
+#include "core/io/scenario_format.h"
+
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "core/io/atomic_file.h"
+#include "core/io/text_reader.h"
+
+namespace arbor {
+namespace {
+
+constexpr std::string_view kHeader = "arbor-scenario";
+constexpr int kVersion = 1;
+
+std::string signature_text(float s) { return std::isnan(s) ? "-" : fmt::format("{}", s); }
+std::string truth_text(std::int32_t id) {
+  if (id == kTruthUnknown) return "-";
+  if (id == kTruthClutter) return "clutter";
+  return fmt::format("{}", id);
+}
+
+double non_negative(const TextReader& in, std::size_t i, std::string_view name) {
+  const double v = in.number(i, name);
+  if (v < 0.0) in.fail(name, fmt::format("must not be negative, got {}", v));
+  return v;
+}
+
+void read_motion(const TextReader& in, MotionModel* motion) {
+  const std::string_view kind = in.field(1);
+  if (!from_string(kind, &motion->kind))
+    in.fail("model", fmt::format("unknown motion model '{}' (odometry, velocity, ackermann)", kind));
+  switch (motion->kind) {
+    case MotionModelKind::kOdometry:
+      in.expect_fields(6, 6, "motion odometry");
+      motion->odometry.alpha1 = non_negative(in, 2, "alpha1");
+      motion->odometry.alpha2 = non_negative(in, 3, "alpha2");
+      motion->odometry.alpha3 = non_negative(in, 4, "alpha3");
+      motion->odometry.alpha4 = non_negative(in, 5, "alpha4");
+      break;
+    case MotionModelKind::kVelocity:
+      in.expect_fields(6, 6, "motion velocity");
+      motion->velocity.sigma_v_mps = non_negative(in, 2, "sigma_v");
+      motion->velocity.sigma_omega_radps = non_negative(in, 3, "sigma_omega");
+      motion->velocity.alpha_v = non_negative(in, 4, "alpha_v");
+      motion->velocity.alpha_omega = non_negative(in, 5, "alpha_omega");
+      break;
+    case MotionModelKind::kAckermann:
+      in.expect_fields(8, 8, "motion ackermann");
+      motion->ackermann.sigma_v_mps = non_negative(in, 2, "sigma_v");
+      motion->ackermann.sigma_steer_rad = non_negative(in, 3, "sigma_steer");
+      motion->vehicle.wheelbase_m = in.number(4, "wheelbase");
+      if (motion->vehicle.wheelbase_m <= 0.0) in.fail("wheelbase", "must be positive");
+      motion->vehicle.encoder_offset_m = in.number(5, "encoder_offset");
+      motion->vehicle.laser_forward_m = in.number(6, "laser_forward");
+      motion->vehicle.laser_left_m = in.number(7, "laser_left");
+      break;
+  }
+}
+
+}  // namespace
+
+Scenario read_scenario(const std::string& path) {
+  TextReader in(path);
+  Scenario s;
+  if (!in.next()) throw InputError(path, 0, "header", "empty file (expected 'arbor-scenario 1')");
+  if (in.field(0) != kHeader) in.fail("header", "not a scenario file (first line must be 'arbor-scenario 1')");
+  in.expect_fields(2, 2, "header");
+  if (in.integer(1, "version") != kVersion) in.fail("version", fmt::format("unsupported version (this build reads {})", kVersion));
+
+  bool have_sensor = false, have_motion = false, have_initial = false, ended = false;
+  int scan_expected = 0;  // measurements still owed by the current scan
+  int scan_line = 0;
+  double last_time = -INFINITY;
+  const auto need_no_pending_scan = [&](std::string_view what) {
+    if (scan_expected > 0)
+      in.fail("z", fmt::format("scan at line {} announced more measurements than it has; found '{}' instead", scan_line, what));
+  };
+
+  while (in.next()) {
+    const std::string_view kind = in.field(0);
+    if (ended) in.fail("type", "data after the 'end' line");
+    if (kind == "z") {
+      in.expect_fields(5, 5, "z");
+      if (scan_expected == 0) in.fail("z", "measurement outside a scan (a 'scan N' line must announce it)");
+      Measurement m;
+      m.range_m = in.number(1, "range");
+      if (m.range_m < 0.0) in.fail("range", fmt::format("negative range {}", m.range_m));
+      m.bearing_rad = in.number(2, "bearing");
+      if (std::abs(m.bearing_rad) > kPi + 1e-9) in.fail("bearing", fmt::format("bearing {} outside [-pi, pi]", m.bearing_rad));
+      m.bearing_rad = wrap_angle(m.bearing_rad);
+      if (in.field(3) != "-") m.signature = static_cast<float>(in.number(3, "signature"));
+      const std::string_view truth = in.field(4);
+      if (truth == "clutter") {
+        m.truth_id = kTruthClutter;
+      } else if (truth != "-") {
+        const std::int64_t id = in.integer(4, "truth");
+        if (id < 0 || id > INT32_MAX) in.fail("truth", "landmark id must be a non-negative 32-bit integer, 'clutter' or '-'");
+        m.truth_id = static_cast<std::int32_t>(id);
+      }
+      s.steps.back().measurements.push_back(m);
+      --scan_expected;
+      continue;
+    }
+    need_no_pending_scan(kind);
+    if (kind == "step") {
+      in.expect_fields(5, 5, "step");
+      if (!have_motion || !have_sensor || !have_initial)
+        in.fail("step", "the 'motion', 'sensor' and 'initial' lines must come before the first step");
+      ScenarioStep step;
+      step.time_s = in.number(1, "time");
+      if (step.time_s < last_time) in.fail("time", fmt::format("time goes backwards ({} after {})", step.time_s, last_time));
+      last_time = step.time_s;
+      step.control = {in.number(2, "u1"), in.number(3, "u2"), in.number(4, "u3")};
+      if (s.motion.kind != MotionModelKind::kOdometry && step.control[2] < 0.0) in.fail("u3", "dt must not be negative");
+      s.steps.push_back(std::move(step));
+    } else if (kind == "truth") {
+      in.expect_fields(4, 4, "truth");
+      if (s.steps.empty()) in.fail("truth", "ground-truth pose before the first step");
+      s.steps.back().truth_pose = Pose2{in.number(1, "x"), in.number(2, "y"), wrap_angle(in.number(3, "theta"))};
+    } else if (kind == "scan") {
+      in.expect_fields(2, 2, "scan");
+      if (s.steps.empty()) in.fail("scan", "scan before the first step");
+      if (s.steps.back().has_scan) in.fail("scan", "a step has at most one scan");
+      const std::int64_t n = in.integer(1, "count");
+      if (n < 0 || n > 1'000'000) in.fail("count", fmt::format("bad measurement count {}", n));
+      s.steps.back().has_scan = true;
+      s.steps.back().measurements.reserve(n);
+      scan_expected = static_cast<int>(n);
+      scan_line = in.line_number();
+    } else if (kind == "landmark") {
+      in.expect_fields(4, 4, "landmark");
+      const std::int64_t id = in.integer(1, "id");
+      if (id < 0 || id > INT32_MAX) in.fail("id", "landmark id must be a non-negative 32-bit integer");
+      s.truth_landmarks.push_back({static_cast<std::int32_t>(id), {in.number(2, "x"), in.number(3, "y")}});
+    } else if (kind == "gps") {
+      in.expect_fields(4, 4, "gps");
+      const double t = in.number(1, "time");
+      if (!s.truth_track.empty() && t < s.truth_track.back().time_s) in.fail("time", "gps time goes backwards");
+      s.truth_track.push_back({t, {in.number(2, "x"), in.number(3, "y")}});
+    } else if (kind == "motion") {
+      in.expect_fields(2, 8, "motion");
+      read_motion(in, &s.motion);
+      have_motion = true;
+    } else if (kind == "sensor") {
+      in.expect_fields(7, 7, "sensor");
+      s.sensor.max_range_m = non_negative(in, 1, "max_range");
+      s.sensor.min_range_m = non_negative(in, 2, "min_range");
+      s.sensor.fov_rad = non_negative(in, 3, "fov");
+      if (s.sensor.fov_rad > 2.0 * kPi + 1e-9) in.fail("fov", "field of view larger than 2 pi");
+      s.sensor.sigma_range_m = in.number(4, "sigma_range");
+      if (s.sensor.sigma_range_m <= 0.0) in.fail("sigma_range", "must be positive");
+      s.sensor.sigma_bearing_rad = in.number(5, "sigma_bearing");
+      if (s.sensor.sigma_bearing_rad <= 0.0) in.fail("sigma_bearing", "must be positive");
+      if (in.field(6) != "-") s.sensor.sigma_signature = non_negative(in, 6, "sigma_signature");
+      have_sensor = true;
+    } else if (kind == "initial") {
+      in.expect_fields(8, 8, "initial");
+      s.start_time_s = in.number(1, "time");
+      last_time = s.start_time_s;
+      s.initial_pose = {in.number(2, "x"), in.number(3, "y"), wrap_angle(in.number(4, "theta"))};
+      s.initial_sigma = {non_negative(in, 5, "sigma_x"), non_negative(in, 6, "sigma_y"), non_negative(in, 7, "sigma_theta")};
+      have_initial = true;
+    } else if (kind == "meta") {
+      in.expect_fields(2, 1000, "meta");
+      std::string value;
+      for (std::size_t i = 2; i < in.field_count(); ++i) value += (i > 2 ? " " : "") + std::string(in.field(i));
+      s.metadata[std::string(in.field(1))] = value;
+    } else if (kind == "end") {
+      in.expect_fields(2, 2, "end");
+      const std::int64_t n = in.integer(1, "steps");
+      if (n != static_cast<std::int64_t>(s.steps.size()))
+        in.fail("steps", fmt::format("file says {} steps but {} were read", n, s.steps.size()));
+      ended = true;
+    } else {
+      in.fail("type", fmt::format("unknown line type '{}' (expected step, truth, scan, z, landmark, gps, motion, "
+                                  "sensor, initial, meta or end)", kind));
+    }
+  }
+  if (scan_expected > 0)
+    throw InputError(path, in.line_number(), "z", fmt::format("file ends inside the scan at line {}: {} measurement(s) missing", scan_line, scan_expected));
+  if (!ended) throw InputError(path, in.line_number(), "end", "file ends without its 'end N' line (truncated?)");
+  return s;
+}
+
+void write_scenario(const Scenario& s, const std::string& path) {
+  std::string out;
+  out.reserve(64 * (s.steps.size() + 16));
+  auto emit = [&out]<typename... T>(fmt::format_string<T...> f, T&&... args) {
+    fmt::format_to(std::back_inserter(out), f, std::forward<T>(args)...);
+  };
+  emit("{} {}\n", kHeader, kVersion);
+  emit("# Arbor scenario: see docs/scenario_format.md\n");
+  for (const auto& [key, value] : s.metadata) emit("meta {} {}\n", key, value);
+  const MotionModel& m = s.motion;
+  switch (m.kind) {
+    case MotionModelKind::kOdometry:
+      emit("motion odometry {} {} {} {}\n", m.odometry.alpha1, m.odometry.alpha2, m.odometry.alpha3, m.odometry.alpha4);
+      break;
+    case MotionModelKind::kVelocity:
+      emit("motion velocity {} {} {} {}\n", m.velocity.sigma_v_mps, m.velocity.sigma_omega_radps, m.velocity.alpha_v,
+           m.velocity.alpha_omega);
+      break;
+    case MotionModelKind::kAckermann:
+      emit("motion ackermann {} {} {} {} {} {}\n", m.ackermann.sigma_v_mps, m.ackermann.sigma_steer_rad,
+           m.vehicle.wheelbase_m, m.vehicle.encoder_offset_m, m.vehicle.laser_forward_m, m.vehicle.laser_left_m);
+      break;
+  }
+  const SensorModel& z = s.sensor;
+  emit("sensor {} {} {} {} {} {}\n", z.max_range_m, z.min_range_m, z.fov_rad, z.sigma_range_m, z.sigma_bearing_rad,
+       std::isnan(z.sigma_signature) ? std::string("-") : fmt::format("{}", z.sigma_signature));
+  emit("initial {} {} {} {} {} {} {}\n", s.start_time_s, s.initial_pose.x, s.initial_pose.y, s.initial_pose.theta,
+       s.initial_sigma.x(), s.initial_sigma.y(), s.initial_sigma.z());
+  for (const auto& l : s.truth_landmarks) emit("landmark {} {} {}\n", l.id, l.position.x(), l.position.y());
+  for (const auto& g : s.truth_track) emit("gps {} {} {}\n", g.time_s, g.position.x(), g.position.y());
+  for (const auto& step : s.steps) {
+    emit("step {} {} {} {}\n", step.time_s, step.control[0], step.control[1], step.control[2]);
+    if (step.truth_pose) emit("truth {} {} {}\n", step.truth_pose->x, step.truth_pose->y, step.truth_pose->theta);
+    if (step.has_scan) {
+      emit("scan {}\n", step.measurements.size());
+      for (const auto& meas : step.measurements)
+        emit("z {} {} {} {}\n", meas.range_m, meas.bearing_rad, signature_text(meas.signature), truth_text(meas.truth_id));
+    }
+  }
+  emit("end {}\n", s.steps.size());
+  write_file_atomically(path, out);
+}
+
+}  // namespace arbor

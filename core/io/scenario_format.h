@@ -1,0 +1,22 @@
+// Reading and writing the scenario text format (docs/scenario_format.md): one path into the engine for
+// simulated and real data alike.
+#ifndef ARBOR_CORE_IO_SCENARIO_FORMAT_H_
+#define ARBOR_CORE_IO_SCENARIO_FORMAT_H_
+
+#include <string>
+
+#include "core/io/scenario.h"
+
+namespace arbor {
+
+// Throws InputError naming file, line and field on anything malformed: truncation, non-numeric or
+// non-finite values, negative ranges, times going backwards, unknown line types.
+Scenario read_scenario(const std::string& path);
+
+// Writes with shortest round-trip number formatting, so read_scenario(write_scenario(s)) == s exactly.
+// The file is written to a temporary name and renamed, so a crash never leaves a partial scenario.
+void write_scenario(const Scenario& scenario, const std::string& path);
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_IO_SCENARIO_FORMAT_H_

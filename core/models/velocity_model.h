@@ -1,0 +1,58 @@
+// Velocity motion model u = (v, omega, dt) (Probabilistic Robotics §5.3): a circular arc of radius v/omega,
+// with the straight-line limit handled by a series expansion so values and Jacobians stay smooth at omega = 0.
+#ifndef ARBOR_CORE_MODELS_VELOCITY_MODEL_H_
+#define ARBOR_CORE_MODELS_VELOCITY_MODEL_H_
+
+#include <cmath>
+
+#include "core/math/eigen_types.h"
+#include "core/math/pose2.h"
+
+namespace arbor {
+
+// var_v = sigma_v^2 + alpha_v*v^2, var_omega = sigma_omega^2 + alpha_omega*omega^2 (per unit of dt^0: the
+// control itself is noisy, the integration below turns it into pose noise).
+struct VelocityNoise {
+  double sigma_v_mps = 0.05, sigma_omega_radps = 0.05, alpha_v = 0.0, alpha_omega = 0.0;
+};
+
+// In the robot frame the arc moves (v*f, v*g) with f = sin(w dt)/w, g = (1 - cos(w dt))/w.
+inline Pose2 velocity_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J_u) {
+  const double v = u[0], w = u[1], dt = u[2];
+  const double wdt = w * dt;
+  double f, g, df_dw, dg_dw;
+  if (std::abs(wdt) > 1e-4) {
+    const double sw = std::sin(wdt), cw = std::cos(wdt);
+    f = sw / w;
+    g = (1.0 - cw) / w;
+    df_dw = (dt * cw * w - sw) / (w * w);
+    dg_dw = (dt * sw * w - (1.0 - cw)) / (w * w);
+  } else {  // Taylor series in w; truncation error O((w dt)^4) relative.
+    const double dt2 = dt * dt, dt3 = dt2 * dt, dt4 = dt3 * dt;
+    f = dt - w * w * dt3 / 6.0;
+    g = w * dt2 / 2.0 - w * w * w * dt4 / 24.0;
+    df_dw = -w * dt3 / 3.0;
+    dg_dw = dt2 / 2.0 - w * w * dt4 / 8.0;
+  }
+  const double df_ddt = std::cos(wdt), dg_ddt = std::sin(wdt);
+  const double c = std::cos(x.theta), s = std::sin(x.theta);
+  const double dx_r = v * f, dy_r = v * g;
+  if (J_pose) *J_pose << 1, 0, -s * dx_r - c * dy_r, 0, 1, c * dx_r - s * dy_r, 0, 0, 1;
+  if (J_u) {
+    // Columns: d/dv, d/domega, d/ddt of (x', y', theta').
+    *J_u << c * f - s * g, v * (c * df_dw - s * dg_dw), v * (c * df_ddt - s * dg_ddt),  //
+        s * f + c * g, v * (s * df_dw + c * dg_dw), v * (s * df_ddt + c * dg_ddt),        //
+        0, dt, w;
+  }
+  return {x.x + c * dx_r - s * dy_r, x.y + s * dx_r + c * dy_r, wrap_angle(x.theta + wdt)};
+}
+
+inline Mat3 velocity_control_covariance(const Vec3& u, const VelocityNoise& n) {
+  const double var_v = n.sigma_v_mps * n.sigma_v_mps + n.alpha_v * u[0] * u[0];
+  const double var_w = n.sigma_omega_radps * n.sigma_omega_radps + n.alpha_omega * u[1] * u[1];
+  return Vec3(var_v, var_w, 0.0).asDiagonal();
+}
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_MODELS_VELOCITY_MODEL_H_
