@@ -2,7 +2,7 @@
 // density, M = 100 particles, for every map back end: the complexity figure of DESIGN.md §3.
 // The particles start from a shared prior map of N landmarks (set_prior_map) and drive a circle through it,
 // so the landmarks in view per scan stay the same whatever N. Step time is the process's CPU time (manual
-// time), one thread unless ARBOR_BENCH_THREADS says otherwise. Run through bench/run_map_benchmarks.sh.
+// time), one thread and M = 100 unless ARBOR_BENCH_THREADS / ARBOR_BENCH_PARTICLES say otherwise. Run through bench/run_map_benchmarks.sh.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -21,7 +21,6 @@
 namespace arbor::bench {
 namespace {
 
-constexpr int kParticles = 100;
 constexpr int kWarmupSteps = 20;
 constexpr int kTimedSteps = 100;
 // The naive back end keeps M full copies (and 2M while resampling): 10^6 x 96 B x 200 would need 19 GB.
@@ -45,6 +44,7 @@ template <class Map>
 void BM_FastSlam_Step(benchmark::State& state) {
   const std::int64_t n = state.range(0);
   const int threads = static_cast<int>(state.range(1));
+  const int particles = static_cast<int>(state.range(2));
   const auto field = make_landmark_field(n);
   FieldDrive drive;
   drive.radius_m = std::min(0.3 * field_side_m(n), 100.0);
@@ -52,7 +52,7 @@ void BM_FastSlam_Step(benchmark::State& state) {
   const Scenario scenario = make_field_scenario(field, drive);
 
   FastSlamOptions options;
-  options.particles = kParticles;
+  options.particles = particles;
   options.threads = threads;
   options.seed = 1;
   FastSlam<Map, KnownAssociation> engine(scenario, options);
@@ -86,30 +86,32 @@ void BM_FastSlam_Step(benchmark::State& state) {
   state.counters["resample_fraction"] = static_cast<double>(resamples) / seconds.size();
   state.counters["landmarks_best"] = static_cast<double>(engine.last_step_stats().best_landmarks);
   MapMemoryStats total;
-  for (int i = 0; i < kParticles; ++i) {
+  for (int i = 0; i < particles; ++i) {
     const MapMemoryStats s = engine.particle(i).map.memory_stats();
     total.bytes += s.bytes;
     total.shared_bytes += s.shared_bytes;
   }
-  state.counters["owned_bytes_per_particle"] = static_cast<double>(total.bytes - total.shared_bytes) / kParticles;
+  state.counters["owned_bytes_per_particle"] = static_cast<double>(total.bytes - total.shared_bytes) / particles;
   // Distinct bytes held by all particles together, per particle: the pool's count where the back end has one
   // (the prior map was dropped above, so the particles hold all of it), else the sum (nothing is shared).
   const std::int64_t pool = live_bytes<Map>();
   state.counters["bytes_per_particle"] =
-      (pool >= 0 ? static_cast<double>(pool) : static_cast<double>(total.bytes)) / kParticles;
+      (pool >= 0 ? static_cast<double>(pool) : static_cast<double>(total.bytes)) / particles;
 }
 
 template <class... Maps>
 void register_all(TypeList<Maps...>) {
-  const int threads = std::getenv("ARBOR_BENCH_THREADS") ? std::atoi(std::getenv("ARBOR_BENCH_THREADS")) : 1;
+  auto env = [](const char* name, int fallback) { return std::getenv(name) ? std::atoi(std::getenv(name)) : fallback; };
+  const int threads = env("ARBOR_BENCH_THREADS", 1);
+  const int particles = env("ARBOR_BENCH_PARTICLES", 100);
   (
       [&] {
         const std::string name = std::string("BM_FastSlam_Step/backend:") + std::string(Maps::kName);
         auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_FastSlam_Step<Maps>);
-        b->ArgNames({"n", "threads"})->UseManualTime()->Iterations(kTimedSteps)->Unit(benchmark::kMicrosecond);
+        b->ArgNames({"n", "threads", "particles"})->UseManualTime()->Iterations(kTimedSteps)->Unit(benchmark::kMicrosecond);
         const bool naive = Maps::kName == std::string_view("naive");
         for (std::int64_t n = 100; n <= 1000000; n *= 10)
-          if (!naive || n <= kNaiveMaxN) b->Args({n, threads});
+          if (!naive || n <= kNaiveMaxN) b->Args({n, threads, particles});
       }(),
       ...);
 }
