@@ -20,5 +20,5 @@ context="--benchmark_context=commit=${commit} --benchmark_context=host=${host} -
 # prior map of N landmarks, which takes longer than the steps themselves at 10^6.
 # shellcheck disable=SC2086
 "$build/bench/step_benchmark" --benchmark_out="$out/step_benchmark.json" --benchmark_out_format=json $context
-echo "Map back ends: set/copy/query/particle memory (map_benchmark.json, median of ${reps}) and one FastSLAM step, M=100, 1 thread, CPU time, median of 100 steps (step_benchmark.json), N=1e2..1e6 at 0.01 landmarks/m^2; commit ${commit}, host ${host}, ${compiler}, $(nproc) cores; reproduce: bench/run_map_benchmarks.sh" > "$out/README"
+echo "Map back ends: set/copy/query/particle memory (map_benchmark.json, median of ${reps}) and one FastSLAM step, M=100, 1 thread, process CPU time, mean (with resampling) and median of 100 steps after 20 warm-up steps (step_benchmark.json), N=1e2..1e6 at 0.01 landmarks/m^2; commit ${commit}, host ${host}, ${compiler}, $(nproc) cores; reproduce: bench/run_map_benchmarks.sh" > "$out/README"
 /usr/bin/python3 analysis/plot_map_complexity.py "$out" | tee "$out/slopes.txt"
