@@ -68,11 +68,11 @@ def panel(ax, data, title, ylabel, what, dashed=None, dashed_what=None):
             print(f"{dashed_what:32s} {backend:6s} slope {sd:6.3f}")
             ax.loglog([p[0] for p in d], [p[1] for p in d], "s--", color=COLORS.get(backend), alpha=0.6,
                       label=f"{backend} {dashed_what.split()[-1]}: slope {sd:.2f}")
-    ax.set_title(title)
+    ax.set_title(title, fontsize=9)
     ax.set_xlabel("landmarks N")
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
 
 
 def main():
@@ -92,9 +92,9 @@ def main():
     copy_time = series(micro, "BM_Map_Copy", lambda b: to_seconds(b, "cpu_time"))
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
-    panel(axes[0][0], step_time, "FastSLAM step, M=100, 1 thread (CPU time; mean, dashed: median)",
+    panel(axes[0][0], step_time, "FastSLAM step, M=100, 1 thread\n(CPU time; solid: mean, dashed: median)",
           "seconds per step", "step time mean", step_median, "step time median")
-    panel(axes[0][1], bytes_pp, "map bytes per particle (all distinct bytes / M; dashed: owned)", "bytes",
+    panel(axes[0][1], bytes_pp, "map bytes per particle after the run\n(solid: all distinct bytes / M; dashed: owned)", "bytes",
           "bytes per particle", owned_pp, "bytes per particle owned")
     panel(axes[1][0], set_time, "one set on a map shared with its parent", "seconds", "set time")
     panel(axes[1][1], copy_time, "particle copy (map)", "seconds", "copy time")
