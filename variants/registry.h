@@ -11,6 +11,8 @@
 
 #include "core/engine/filter.h"
 #include "variants/association/known_association.h"
+#include "variants/maps/hamt_map.h"
+#include "variants/maps/persistent_tree_map.h"
 #include "variants/maps/vector_map.h"
 
 namespace arbor {
@@ -18,7 +20,7 @@ namespace arbor {
 template <class... T>
 struct TypeList {};
 
-using MapBackends = TypeList<VectorMap>;
+using MapBackends = TypeList<VectorMap, PersistentTreeMap, HamtMap<>>;
 using AssociationStrategies = TypeList<KnownAssociation>;
 
 // Builds the engine for the named variants; throws InputError (field "map" or "assoc") listing the valid names.
