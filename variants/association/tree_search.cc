@@ -21,7 +21,8 @@ class TreeSearch {
              AssociationStats* stats)
       : p_(problem), set_(settings), s_(s), stats_(stats), m_(static_cast<int>(problem.measurements.size())),
         n_(static_cast<int>(problem.candidates.size())),
-        signatures_(std::isfinite(problem.signature_sigma) && problem.signature_sigma > 0.0) {}
+        signatures_(std::isfinite(problem.signature_sigma) && problem.signature_sigma > 0.0),
+        joint_(problem.joint_covariance.size() > 0) {}
 
   void prepare() {
     canonical_measurement_order(p_, &s_.order);
@@ -34,11 +35,16 @@ class TreeSearch {
       s_.point[k] = range_bearing_inverse(origin, z, &J);
       s_.point_cov[k] = J * p_.R * J.transpose();
     }
+    if (joint_) {
+      s_.jacobian.resize(n_);
+      for (int j = 0; j < n_; ++j) range_bearing_inverse(origin, p_.candidates[j].z_hat, &s_.jacobian[j]);
+    }
     s_.used.assign(n_, 0);
     s_.current.assign(m_, -1);
     s_.paired_level.assign(m_, -1);
     s_.ranked.clear();
     s_.ranked_pairings.clear();
+    s_.ranked_pose.clear();
     if (!set_.use_locality) return;
     // Locality sets hold ids; the search needs candidate indices (candidates are sorted by id).
     s_.loc_begin.assign(n_ + 1, 0);
@@ -60,6 +66,7 @@ class TreeSearch {
       return;
     }
     const int left = m_ - k - 1;
+    if (!can_enter(depth + optimistic_extra(k, depth))) return;
     if (can_enter(depth + 1 + left)) {
       if (!set_.use_locality || depth == 0) {
         for (int g = 0; g < n_ && !stats_->budget_exhausted; ++g) branch(k, depth, g);
@@ -76,21 +83,31 @@ class TreeSearch {
   // Verifies the ranked hypotheses in order; the first that passes is completed and written to result.
   bool finish(AssociationResult& result, Pose2* pose_out) {
     result.pairing.assign(m_, kUnassigned);
-    std::vector<int> accepted;
-    Pose2 pose;
-    for (const std::vector<int>& h : s_.ranked) {
-      if (verify(h, &pose)) {
-        accepted = h;
-        break;
-      }
-    }
-    if (accepted.empty()) {
+    if (s_.ranked.empty()) {
       // No verified pose: classify the unpaired measurements with the prior's predictions.
       gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
       finish_unpaired(s_.gating.near_any, &result.pairing);
       return false;
     }
-    complete(&accepted, &pose);
+    // Each verified hypothesis is completed with its pose; the one whose pose explains the most measurements
+    // wins (ties: rank order). A wrong pose that happens to fit a few features explains little else.
+    std::vector<int> accepted;
+    Pose2 pose;
+    int best_count = -1;
+    std::vector<char> near_any;
+    for (std::size_t h = 0; h < s_.ranked.size(); ++h) {
+      std::vector<int> candidate = s_.ranked[h];
+      Pose2 candidate_pose = s_.ranked_pose[h];
+      complete(&candidate, &candidate_pose);
+      const int count = static_cast<int>(std::count_if(candidate.begin(), candidate.end(), [](int j) { return j >= 0; }));
+      if (count > best_count) {
+        best_count = count;
+        accepted = std::move(candidate);
+        pose = candidate_pose;
+        near_any = s_.gating.near_any;
+      }
+    }
+    s_.gating.near_any = std::move(near_any);
     for (int k = 0; k < m_; ++k)
       if (accepted[k] >= 0) result.pairing[s_.order[k]] = p_.candidates[accepted[k]].id;
     finish_unpaired(s_.gating.near_any, &result.pairing);
@@ -103,6 +120,38 @@ class TreeSearch {
     const auto it = std::lower_bound(p_.candidates.begin(), p_.candidates.end(), id,
                                      [](const AssociationCandidate& c, LandmarkId v) { return c.id < v; });
     return it != p_.candidates.end() && it->id == id ? static_cast<int>(it - p_.candidates.begin()) : -1;
+  }
+
+  // An upper bound on the pairings levels k.. can still add. In the locality search (after the first
+  // pairing) only the open features can pair, and only at levels where one of them passes the constraints
+  // against the pairings so far; without it the bound degenerates to "every level left", which makes the
+  // search exponential in m through the '*' branches alone.
+  int optimistic_extra(int k, int depth) {
+    const int left = m_ - k;
+    if (!set_.use_locality || depth == 0) return std::min(left, n_ - depth);
+    const std::vector<int>& open = s_.allowed[depth];
+    const int limit = std::min(left, static_cast<int>(open.size()));
+    int levels = 0;
+    for (int l = k; l < m_ && levels < limit; ++l) {
+      for (int g : open) {
+        if (s_.used[g] || !passes(l, depth, g)) continue;
+        ++levels;
+        break;
+      }
+    }
+    return levels;
+  }
+
+  // Unary and binary constraints of candidate g at level k against the `depth` pairings so far.
+  bool passes(int k, int depth, int g) {
+    ++stats_->tests;
+    if (!unary(k, g)) return false;
+    for (int t = 0; t < depth; ++t) {
+      const int ka = s_.paired_level[t];
+      ++stats_->tests;
+      if (!binary(ka, s_.current[ka], k, g)) return false;
+    }
+    return true;
   }
 
   bool can_enter(int pairings) const {
@@ -133,35 +182,39 @@ class TreeSearch {
     }
     if (lm > 0.0) {
       const Vec2 v = dm / lm;
-      var += v.dot((p_.candidates[f].position_cov + p_.candidates[g].position_cov) * v);
+      Mat2 cov = p_.candidates[f].position_cov + p_.candidates[g].position_cov;
+      if (joint_) {
+        // Positions recovered from predictions share the pose error, which cancels in their difference:
+        // Cov(m_f - m_g) = Sigma_f + Sigma_g - X_fg - X_fg^T, X_fg = J_f C_fg J_g^T.
+        const Mat2 x = s_.jacobian[f] * p_.joint_covariance.block<2, 2>(2 * f, 2 * g) * s_.jacobian[g].transpose();
+        cov -= x + x.transpose();
+      }
+      var += std::max(v.dot(cov * v), 0.0);
     }
     const double d = lp - lm;
     return d * d <= set_.binary_gate * var;
   }
 
   void branch(int k, int depth, int g) {
-    if (s_.used[g]) return;
-    ++stats_->tests;
-    if (!unary(k, g)) return;
-    for (int t = 0; t < depth; ++t) {
-      const int ka = s_.paired_level[t];
-      ++stats_->tests;
-      if (!binary(ka, s_.current[ka], k, g)) return;
-    }
+    if (s_.used[g] || !passes(k, depth, g)) return;
     if (stats_->hypotheses >= set_.max_hypotheses) {
       stats_->budget_exhausted = true;
       return;
     }
     ++stats_->hypotheses;
     if (set_.use_locality) {
-      // The remaining measurements may pair only with features covisible with every paired one (the
-      // intersection of their locality sets), so the open set never exceeds the anchor's locality.
+      // The remaining measurements may pair only with features in the locality of the first paired feature
+      // (the anchor), so the open set never exceeds c features: the bound n((c+1)^m - 1)/c + 1.
       std::vector<int>& next = s_.allowed[depth + 1];
       next.clear();
       const int* begin = s_.loc.data() + s_.loc_begin[g];
       const int* end = s_.loc.data() + s_.loc_begin[g + 1];
+      // Anchor rule: the open set stays the first paired feature's locality. Intersection rule: it shrinks
+      // to the features covisible with every paired one.
       if (depth == 0) {
         next.assign(begin, end);
+      } else if (set_.anchor_only) {
+        next = s_.allowed[depth];
       } else {
         for (int h : s_.allowed[depth])
           if (std::find(begin, end, h) != end) next.push_back(h);
@@ -175,15 +228,22 @@ class TreeSearch {
     s_.current[k] = -1;
   }
 
+  // A complete interpretation is verified at once (closed-form pose, joint test), and only verified ones are
+  // ranked: verifying "the best, then the next best" in rank order picks the same hypothesis, and pruning
+  // against verified ones keeps geometric coincidences that fail verification from crowding the ranking.
   void record(int depth) {
+    Pose2 pose;
+    if (!verify(s_.current, &pose)) return;
     // Most pairings first; equal counts keep discovery order (deterministic: levels and candidates are
     // visited in canonical order).
     auto pos = std::upper_bound(s_.ranked_pairings.begin(), s_.ranked_pairings.end(), depth, std::greater<int>());
     const auto at = pos - s_.ranked_pairings.begin();
     s_.ranked_pairings.insert(pos, depth);
     s_.ranked.insert(s_.ranked.begin() + at, s_.current);
+    s_.ranked_pose.insert(s_.ranked_pose.begin() + at, pose);
     if (static_cast<int>(s_.ranked.size()) > kTreeHypothesesVerified) {
       s_.ranked.pop_back();
+      s_.ranked_pose.pop_back();
       s_.ranked_pairings.pop_back();
     }
   }
@@ -272,6 +332,7 @@ class TreeSearch {
   int m_;
   int n_;
   bool signatures_;
+  bool joint_;  // positions come from predictions with a joint covariance (exchange format)
 };
 
 }  // namespace

@@ -26,12 +26,15 @@ struct TreeScratch {
   std::vector<int> paired_level; // level of each pairing, in tree order
   std::vector<std::vector<int>> ranked;  // the best hypotheses found, most pairings first
   std::vector<int> ranked_pairings;
+  std::vector<Pose2> ranked_pose;
+  std::vector<Mat2> jacobian;    // d position / d z_hat per candidate (problems with a joint covariance)
   std::vector<Vec2> fit_p, fit_q;
   std::vector<Mat2> fit_cov;
 };
 
 struct TreeSettings {
   bool use_locality = true;
+  bool anchor_only = false;  // open set = the first paired feature's locality (else the intersection over all)
   double gate_probability = 0.99;
   double new_landmark_gate = 0.0;  // chi2(new_landmark_probability, 2)
   double gate2 = 0.0;              // chi2(gate_probability, 2)
@@ -39,8 +42,8 @@ struct TreeSettings {
   std::int64_t max_hypotheses = 0;
 };
 
-// Hypotheses kept for verification (the best, then the next best when it fails the joint test).
-inline constexpr int kTreeHypothesesVerified = 16;
+// Verified hypotheses kept, most pairings first; the one whose completion explains most measurements wins.
+inline constexpr int kTreeHypothesesVerified = 8;
 // A hypothesis needs two pairings to fix a pose, so fewer are never accepted.
 inline constexpr int kTreeMinPairings = 2;
 

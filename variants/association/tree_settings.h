@@ -11,6 +11,7 @@ namespace arbor::association {
 inline TreeSettings make_tree_settings(const AssociationOptions& options, bool use_locality) {
   TreeSettings s;
   s.use_locality = use_locality;
+  s.anchor_only = true;
   s.gate_probability = options.gate_probability;
   s.gate2 = chi_square_quantile(options.gate_probability, 2);
   s.binary_gate = chi_square_quantile(options.gate_probability, 1);
