@@ -12,6 +12,7 @@
 #include "core/metrics/association_score.h"
 #include "experiments/cli/commands.h"
 #include "variants/association/joint_compatibility.h"
+#include "core/metrics/association_score.h"
 #include "variants/association/problem_generator.h"
 #include "variants/association/problem_io.h"
 #include "variants/association/strategy_dispatch.h"
@@ -31,22 +32,6 @@ struct AssociateArgs {
   std::vector<double> pose_sigma{0.3, 0.3, 0.05};
   std::string out;
 };
-
-// Precision/recall/F1 of one answer: a pairing with the true id is a true match, with another id a false
-// match; an unpaired measurement of a landmark that was a candidate is a missed match.
-AssociationCounts score(const std::vector<LandmarkId>& pairing, const std::vector<LandmarkId>& truth) {
-  AssociationCounts c;
-  for (std::size_t i = 0; i < pairing.size(); ++i) {
-    ++c.scored;
-    if (pairing[i] >= 0) {
-      (pairing[i] == truth[i] ? c.true_matches : c.false_matches) += 1;
-    } else if (truth[i] >= 0) {
-      ++c.missed_matches;
-      if (pairing[i] == kNewLandmark) ++c.false_new;
-    }
-  }
-  return c;
-}
 
 int run_generate(const AssociateArgs& a) {
   if (a.out.empty()) throw InputError("", 0, "--out", "--generate needs --out FILE");
@@ -95,7 +80,7 @@ int run_solve(const AssociateArgs& a) {
   fmt::print("stats hypotheses={} tests={} seconds={:.9f}{}\n", result.stats.hypotheses, result.stats.tests, seconds,
              result.stats.budget_exhausted ? " budget_exhausted=1" : "");
   if (!truth.empty()) {
-    const AssociationCounts c = score(result.pairing, truth);
+    const AssociationCounts c = score_against_truth(result.pairing, truth);
     const auto joint = association::joint_compatibility(problem, result.pairing, a.chi2);
     const auto show = [](std::optional<double> v) { return v ? fmt::format("{:.4f}", *v) : std::string("nan"); };
     fmt::print("score precision={} recall={} f1={} jointly_compatible={}\n", show(c.precision()), show(c.recall()),

@@ -29,10 +29,20 @@ class JcbbSearch {
     s_.L.assign(dim * dim, 0.0);
     s_.y.assign(dim, 0.0);
     s_.W.assign(dim * 2, 0.0);
+    if (coupled_ && p_.joint_covariance.size() == 0) {
+      s_.HP.resize(p_.candidates.size());
+      for (std::size_t j = 0; j < p_.candidates.size(); ++j) s_.HP[j] = p_.candidates[j].H_pose * p_.P;
+    }
     search(0, 0, 0.0);
   }
 
  private:
+  // C(a, b) for a != b: H_a P H_b^T with G_a = H_a P precomputed once per candidate (or the given joint block).
+  Mat2 cross(int a, int b) const {
+    if (p_.joint_covariance.size() > 0) return p_.joint_covariance.block<2, 2>(2 * a, 2 * b);
+    return s_.HP[a] * p_.candidates[b].H_pose.transpose();
+  }
+
   double& L(int r, int c) { return s_.L[static_cast<std::size_t>(r) * 2 * levels_ + c]; }
 
   // Extends the factor for the hypothesis with `depth` pairings by candidate j for measurement level k.
@@ -48,7 +58,7 @@ class JcbbSearch {
     // B = C(paired, j); W = L^-1 B by forward substitution, O(depth^2).
     double* W = s_.W.data();
     for (int t = 0; t < depth; ++t) {
-      const Mat2 b = p_.innovation_covariance(s_.paired[t], j);
+      const Mat2 b = cross(s_.paired[t], j);
       W[2 * (2 * t) + 0] = b(0, 0);
       W[2 * (2 * t) + 1] = b(0, 1);
       W[2 * (2 * t + 1) + 0] = b(1, 0);

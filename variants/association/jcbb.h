@@ -27,6 +27,7 @@ struct JcbbScratch {
   std::vector<double> L;          // lower Cholesky factor of the joint innovation covariance, row-major
   std::vector<double> y;          // L^-1 nu: the whitened joint innovation
   std::vector<double> W;          // L^-1 B for the pairing under test (2k x 2)
+  std::vector<Mat23> HP;          // H_pose_j P per candidate
 };
 
 // Depth-first branch and bound over pairings, maximising the number of paired measurements, ties broken by

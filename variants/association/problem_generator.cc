@@ -104,6 +104,20 @@ GeneratedProblem generate_association_problem(const ProblemGeneratorOptions& o) 
   return g;
 }
 
+AssociationCounts score_against_truth(const std::vector<LandmarkId>& pairing, const std::vector<LandmarkId>& truth) {
+  AssociationCounts c;
+  for (std::size_t i = 0; i < pairing.size() && i < truth.size(); ++i) {
+    ++c.scored;
+    if (pairing[i] >= 0) {
+      (pairing[i] == truth[i] ? c.true_matches : c.false_matches) += 1;
+    } else if (truth[i] >= 0) {
+      ++c.missed_matches;
+      if (pairing[i] == kNewLandmark) ++c.false_new;
+    }
+  }
+  return c;
+}
+
 void assign_nearest_localities(AssociationProblem* problem, int k) {
   auto& cands = problem->candidates;
   const int n = static_cast<int>(cands.size());

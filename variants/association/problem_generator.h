@@ -10,6 +10,7 @@
 
 #include "core/association/association_problem.h"
 #include "core/math/pose2.h"
+#include "core/metrics/association_score.h"
 
 namespace arbor {
 
@@ -43,6 +44,12 @@ GeneratedProblem generate_association_problem(const ProblemGeneratorOptions& opt
 // Fills each candidate's locality with its k nearest other candidates by position (a grid, O(n k)): the
 // distance proxy for covisibility used where no scan history exists (generated and file problems).
 void assign_nearest_localities(AssociationProblem* problem, int k);
+
+// Scores one answer of a standalone problem against its truth (-1 = clutter), with the counts of
+// core/metrics/association_score.h: a pairing with the true id is a true match, any other pairing (or a
+// paired clutter measurement) a false match; an unpaired view of a candidate is a missed match, and a false
+// new landmark too when it was declared NEW.
+AssociationCounts score_against_truth(const std::vector<LandmarkId>& pairing, const std::vector<LandmarkId>& truth);
 
 }  // namespace arbor
 
