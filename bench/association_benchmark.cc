@@ -2,7 +2,7 @@
 // fraction of jointly compatible answers, vs m, n and clutter, the locality tree vs the unrestricted one, and
 // the DESIGN.md §10 cases. Prints one CSV row per configuration (per-call distributions need a custom loop,
 // not Google Benchmark's per-iteration means); analysis/plot_association.py reads the CSV.
-//   association_benchmark [--quick] > results/association/<commit>_<host>_<compiler>/association.csv
+//   association_benchmark [--quick] [--group NAME] > results/association/<commit>_<host>_<compiler>/association.csv
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -78,7 +78,12 @@ void run_case(const Case& c) {
 
 int main(int argc, char** argv) {
   using arbor::Case;
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false;
+  std::string only_group;  // --group NAME runs one group (design, m, n, clutter, tree_n, tree_m)
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+    if (std::strcmp(argv[i], "--group") == 0 && i + 1 < argc) only_group = argv[++i];
+  }
   const int seeds = quick ? 5 : 50;
   std::vector<Case> cases;
   // DESIGN.md §10: n = 200, 20 + 5 and n = 500, 30 + 10.
@@ -103,6 +108,7 @@ int main(int argc, char** argv) {
              arbor::build_type());
   fmt::print("group,strategy,n,m,clutter,seeds,median_s,p90_s,max_s,median_hypotheses,mean_hypotheses,"
              "median_tests,precision,recall,f1,jointly_compatible,budget_exhausted\n");
-  for (const Case& c : cases) arbor::run_case(c);
+  for (const Case& c : cases)
+    if (only_group.empty() || c.group == only_group) arbor::run_case(c);
   return 0;
 }

@@ -109,6 +109,21 @@ class JcbbSearch {
     return d2 + y0 * y0 + y1 * y1;
   }
 
+  // Levels after k that still have an unused compatible candidate: a tighter bound than the static count of
+  // levels with any compatible candidate, since candidates taken by the hypothesis cannot pair again.
+  int pairable_after(int k) const {
+    int count = 0;
+    for (int l = k + 1; l < levels_; ++l) {
+      for (int e = s_.list_begin[l]; e < s_.list_begin[l + 1]; ++e) {
+        if (!s_.used[s_.list[e]]) {
+          ++count;
+          break;
+        }
+      }
+    }
+    return count;
+  }
+
   // True when a hypothesis with `pairings` pairings and distance >= d2 could still beat the best.
   bool can_beat(int pairings, double d2) const {
     return pairings > best_pairings_ || (pairings == best_pairings_ && d2 <= best_d2_);
@@ -143,7 +158,7 @@ class JcbbSearch {
       consider(depth, d2);
       return;
     }
-    const int after = s_.remaining[k + 1];
+    const int after = pairable_after(k);
     if (can_beat(depth + 1 + after, d2)) {
       for (int e = s_.list_begin[k]; e < s_.list_begin[k + 1]; ++e) {
         const int j = s_.list[e];
