@@ -74,7 +74,7 @@ int run_convert(const ConvertOptions& o) {
       fmt::print("  {} scans with >= 3 beacons fitted; GPS-to-laser lever arm ({:.2f}, {:.2f}) m\n", e.fitted_scans,
                  e.gps_to_laser_m.x(), e.gps_to_laser_m.y());
       print_measurement_estimate(e.measurement);
-      fmt::print("  motion noise from {} windows between fitted scans: sigma_v {:.4f} m/s, sigma_steer {:.4f} rad\n",
+      fmt::print("  motion noise from {} windows of 2 s on the GPS track: sigma_v {:.4f} m/s, sigma_steer {:.4f} rad\n",
                  e.motion.windows, e.motion.sigma_u1, e.motion.sigma_u2);
       if (e.measurement.count > 0) {
         scenario.sensor.sigma_range_m = e.measurement.sigma_range_m;
