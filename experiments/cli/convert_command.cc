@@ -6,6 +6,7 @@
 
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
+#include "core/metrics/gps_jumps.h"
 #include "experiments/cli/commands.h"
 #include "experiments/loaders/acfr_car_park.h"
 #include "experiments/loaders/isam_victoria_park.h"
@@ -23,7 +24,11 @@ struct ConvertOptions {
   std::string out;
   bool estimate_noise = false;
   bool strict = false;
+  double max_gps_speed = 0.0;
 };
+
+// GPS noise allowance of the jump test: fixes within this of where the vehicle could have driven are kept.
+constexpr double kGpsSlackM = 1.0;
 
 std::string default_input(const std::string& from) {
   const std::string data = std::string(ARBOR_SOURCE_DIR) + "/data/";
@@ -91,6 +96,12 @@ int run_convert(const ConvertOptions& o) {
     report.add("observations", static_cast<std::int64_t>(d.observations.size()));
     report.add("steps", static_cast<std::int64_t>(scenario.steps.size()));
   }
+  if (o.max_gps_speed > 0.0) {
+    if (scenario.truth_track.empty()) throw InputError("", 0, "--max-gps-speed", "this dataset has no GPS track");
+    int dropped = 0;
+    scenario.truth_track = drop_gps_jumps(scenario.truth_track, o.max_gps_speed, kGpsSlackM, &dropped);
+    report.add("dropped: GPS jump", dropped);
+  }
   write_scenario(scenario, o.out);
   fmt::print("converted {} ({}) -> {}\n", o.from, input, o.out);
   for (const auto& [what, n] : report.counts) fmt::print("  {}: {}\n", what, n);
@@ -116,6 +127,10 @@ void add_convert_command(CLI::App& app, CommandAction* action) {
                 "write the estimates into the scenario instead of the documented defaults");
   cmd->add_flag("--strict", options->strict,
                 "UTIAS: treat unknown barcodes (known false detections) as errors instead of dropping and counting them");
+  cmd->add_option("--max-gps-speed", options->max_gps_speed,
+                  "Victoria Park, Car Park: drop GPS fixes that imply more than this speed [m/s] from the last kept fix "
+                  "(GPS jumps; 0 keeps every fix). The ute's top speed in the data is 6.6 m/s")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([options, action] { *action = [options] { return run_convert(*options); }; });
 }
 
