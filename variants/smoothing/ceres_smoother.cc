@@ -1,11 +1,14 @@
 // Factor graph -> ceres::Problem -> solution. The only translation unit that assembles Ceres problems.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include <ceres/ceres.h>
 
 #include "core/check.h"
+#include "core/models/range_bearing_model.h"
 #include "variants/smoothing/factors.h"
 #include "variants/smoothing/smoother.h"
 
@@ -76,6 +79,132 @@ void add_factors(const FactorGraph& graph, ProblemData& data, ceres::LossFunctio
     problem.AddResidualBlock(internal::PosePriorError::create(f), nullptr, data.pose(f.pose));
 }
 
+ceres::Solver::Options make_solver_options(const SmootherOptions& options) {
+  ceres::Solver::Options solver_options;
+  solver_options.minimizer_type = ceres::TRUST_REGION;
+  solver_options.trust_region_strategy_type = options.dogleg ? ceres::DOGLEG : ceres::LEVENBERG_MARQUARDT;
+  solver_options.use_nonmonotonic_steps = options.nonmonotonic_steps;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.num_threads = options.threads;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.parameter_tolerance = options.parameter_tolerance;
+  solver_options.minimizer_progress_to_stdout = options.verbose;
+  solver_options.logging_type = options.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+  solver_options.linear_solver_type = options.linear_solver == SmootherLinearSolver::kSparseSchur
+                                          ? ceres::SPARSE_SCHUR
+                                          : ceres::SPARSE_NORMAL_CHOLESKY;
+  return solver_options;
+}
+
+// SPARSE_SCHUR with SmootherOptions::schur_landmarks_first: eliminate exactly the landmarks (no two share a
+// factor, so they form an independent set). Otherwise Ceres picks its own independent set to eliminate.
+void set_landmarks_first(ProblemData& data, const ceres::Problem& problem, const SmootherOptions& options,
+                         ceres::Solver::Options& solver_options) {
+  if (solver_options.linear_solver_type != ceres::SPARSE_SCHUR || !options.schur_landmarks_first) return;
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (int j = 0; j < data.landmark_count; ++j)
+    if (problem.HasParameterBlock(data.landmark(j))) ordering->AddElementToGroup(data.landmark(j), 0);
+  if (ordering->NumElements() == 0) return;  // nothing to eliminate: let Ceres choose
+  for (int i = 0; i < data.pose_count; ++i)
+    if (problem.HasParameterBlock(data.pose(i))) ordering->AddElementToGroup(data.pose(i), 1);
+  solver_options.linear_solver_ordering = ordering;
+}
+
+// The warm start of SmootherOptions::warm_start_poses: adds the graph's factors stage by stage (stage =
+// highest pose index touched / chunk) into one growing problem, initialising variables as they appear.
+class WarmStart {
+ public:
+  WarmStart(const FactorGraph& graph, ProblemData& data, ceres::LossFunction* loss, ceres::Problem& problem)
+      : graph_(graph), data_(data), loss_(loss), problem_(problem), pose_ready_(data.pose_count, false),
+        landmark_ready_(data.landmark_count, false) {}
+
+  // Adds the factors of the stages up to `stage` not yet added.
+  void add_through(int stage, int chunk) {
+    for (; prior_ < graph_.priors.size() && graph_.priors[prior_].pose / chunk <= stage; ++prior_) {
+      const PosePriorFactor& f = graph_.priors[prior_];
+      ready_pose(f.pose);
+      problem_.AddResidualBlock(internal::PosePriorError::create(f), nullptr, data_.pose(f.pose));
+    }
+    for (; between_ < graph_.betweens.size(); ++between_) {
+      const BetweenFactor& f = graph_.betweens[between_];
+      if (std::max(f.from, f.to) / chunk > stage) break;
+      ready_pose_via(f);
+      problem_.AddResidualBlock(internal::BetweenError::create(f), nullptr, data_.pose(f.from), data_.pose(f.to));
+    }
+    for (; range_bearing_ < graph_.range_bearings.size(); ++range_bearing_) {
+      const RangeBearingFactor& f = graph_.range_bearings[range_bearing_];
+      if (f.pose / chunk > stage) break;
+      ready_pose(f.pose);
+      if (!landmark_ready_[f.landmark]) {
+        const double* x = data_.pose(f.pose);
+        set_landmark(f.landmark, range_bearing_inverse(Pose2{x[0], x[1], x[2]}, f.z));
+      }
+      problem_.AddResidualBlock(internal::RangeBearingError::create(f), loss_, data_.pose(f.pose),
+                                data_.landmark(f.landmark));
+    }
+    for (; point_ < graph_.points.size(); ++point_) {
+      const PointFactor& f = graph_.points[point_];
+      if (f.pose / chunk > stage) break;
+      ready_pose(f.pose);
+      if (!landmark_ready_[f.landmark]) {
+        const double* x = data_.pose(f.pose);
+        set_landmark(f.landmark, Pose2{x[0], x[1], x[2]}.transform(f.p_robot));
+      }
+      problem_.AddResidualBlock(internal::PointError::create(f), loss_, data_.pose(f.pose),
+                                data_.landmark(f.landmark));
+    }
+  }
+
+  // True when the factor lists are ordered by stage, which the staged adding above relies on (graphs from
+  // build_factor_graph and read_isam_graph are: factors follow the poses in time order).
+  static bool stage_ordered(const FactorGraph& graph) {
+    const auto ordered = [](const auto& factors, auto pose_of) {
+      for (std::size_t i = 1; i < factors.size(); ++i)
+        if (pose_of(factors[i]) < pose_of(factors[i - 1])) return false;
+      return true;
+    };
+    return ordered(graph.betweens, [](const BetweenFactor& f) { return std::max(f.from, f.to); }) &&
+           ordered(graph.priors, [](const PosePriorFactor& f) { return f.pose; }) &&
+           ordered(graph.range_bearings, [](const RangeBearingFactor& f) { return f.pose; }) &&
+           ordered(graph.points, [](const PointFactor& f) { return f.pose; });
+  }
+
+ private:
+  // A pose first seen without odometry to a solved pose keeps the graph's initial value.
+  void ready_pose(int i) { pose_ready_[i] = true; }
+
+  // The odometry places a new endpoint relative to a solved one (delta, or its inverse when given backwards).
+  void ready_pose_via(const BetweenFactor& f) {
+    const auto pose = [&](int i) {
+      const double* x = data_.pose(i);
+      return Pose2{x[0], x[1], x[2]};
+    };
+    const auto set_pose = [&](int i, const Pose2& p) {
+      data_.pose(i)[0] = p.x;
+      data_.pose(i)[1] = p.y;
+      data_.pose(i)[2] = p.theta;
+      pose_ready_[i] = true;
+    };
+    if (pose_ready_[f.from] && !pose_ready_[f.to]) set_pose(f.to, pose(f.from).compose(f.delta));
+    else if (!pose_ready_[f.from] && pose_ready_[f.to]) set_pose(f.from, pose(f.to).compose(f.delta.between(Pose2{})));
+    pose_ready_[f.from] = pose_ready_[f.to] = true;
+  }
+
+  void set_landmark(int j, const Vec2& m) {
+    data_.landmark(j)[0] = m.x();
+    data_.landmark(j)[1] = m.y();
+    landmark_ready_[j] = true;
+  }
+
+  const FactorGraph& graph_;
+  ProblemData& data_;
+  ceres::LossFunction* loss_;
+  ceres::Problem& problem_;
+  std::vector<bool> pose_ready_, landmark_ready_;
+  std::size_t between_ = 0, prior_ = 0, range_bearing_ = 0, point_ = 0;
+};
+
 }  // namespace
 
 SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOptions& options) {
@@ -87,44 +216,46 @@ SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOption
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   std::unique_ptr<ceres::LossFunction> loss(make_loss(options));
   ceres::Problem problem(problem_options);
-  add_factors(graph, data, loss.get(), problem);
-
-  ceres::Solver::Options solver_options;
-  solver_options.minimizer_type = ceres::TRUST_REGION;
-  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  solver_options.max_num_iterations = options.max_iterations;
-  solver_options.num_threads = options.threads;
-  solver_options.function_tolerance = options.function_tolerance;
-  solver_options.gradient_tolerance = options.gradient_tolerance;
-  solver_options.parameter_tolerance = options.parameter_tolerance;
-  solver_options.minimizer_progress_to_stdout = options.verbose;
-  solver_options.logging_type = options.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
-  if (options.linear_solver == SmootherLinearSolver::kSparseSchur) {
-    solver_options.linear_solver_type = ceres::SPARSE_SCHUR;
-    // Eliminate the landmarks first: no two share a factor, so they form an independent set, and the
-    // reduced system couples only the poses that saw a common landmark.
-    if (data.landmark_count > 0) {
-      auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-      for (int j = 0; j < data.landmark_count; ++j) ordering->AddElementToGroup(data.landmark(j), 0);
-      for (int i = 0; i < data.pose_count; ++i) ordering->AddElementToGroup(data.pose(i), 1);
-      solver_options.linear_solver_ordering = ordering;
-    }
+  const bool warm_start = options.warm_start_poses > 0 && data.pose_count > options.warm_start_poses &&
+                          WarmStart::stage_ordered(graph);
+  double initial_cost = 0.0;
+  if (warm_start) {
+    // The reported initial cost is the full problem's at the graph's initial values, as without a warm start.
+    ceres::Problem full(problem_options);
+    ProblemData initial = data;
+    add_factors(graph, initial, loss.get(), full);
+    full.Evaluate(ceres::Problem::EvaluateOptions(), &initial_cost, nullptr, nullptr, nullptr);
   } else {
-    solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    add_factors(graph, data, loss.get(), problem);
   }
   const double build_time = seconds_since(build_start);
 
-  ceres::Solver::Summary ceres_summary;
-  const auto solve_start = Clock::now();
-  ceres::Solve(solver_options, &problem, &ceres_summary);
-  const double solve_time = seconds_since(solve_start);
-
   SmootherResult result;
   SmootherSummary& s = result.summary;
+  ceres::Solver::Summary ceres_summary;
+  const auto solve_start = Clock::now();
+  if (warm_start) {
+    WarmStart stages(graph, data, loss.get(), problem);
+    const int chunk = options.warm_start_poses;
+    const int last_stage = (data.pose_count - 1) / chunk;
+    for (int stage = 0; stage <= last_stage; ++stage) {
+      stages.add_through(stage, chunk);
+      ceres::Solver::Options solver_options = make_solver_options(options);
+      if (stage < last_stage) solver_options.max_num_iterations = options.warm_start_iterations;
+      set_landmarks_first(data, problem, options, solver_options);
+      ceres::Solve(solver_options, &problem, &ceres_summary);
+      s.iterations += static_cast<int>(ceres_summary.iterations.size()) - 1;
+    }
+  } else {
+    ceres::Solver::Options solver_options = make_solver_options(options);
+    set_landmarks_first(data, problem, options, solver_options);
+    ceres::Solve(solver_options, &problem, &ceres_summary);
+    s.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;  // iteration 0 is the initial point
+    initial_cost = ceres_summary.initial_cost;
+  }
+  s.solve_time_s = seconds_since(solve_start);
   s.build_time_s = build_time;
-  s.solve_time_s = solve_time;
-  s.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;  // iteration 0 is the initial point
-  s.initial_cost = ceres_summary.initial_cost;
+  s.initial_cost = initial_cost;
   s.final_cost = ceres_summary.final_cost;
   s.termination = ceres::TerminationTypeToString(ceres_summary.termination_type);
   s.usable = ceres_summary.IsSolutionUsable();
@@ -160,7 +291,9 @@ SmootherResult smooth(const Scenario& scenario, const SmootherAssociations& asso
   const auto start = Clock::now();
   const FactorGraph graph = build_factor_graph(scenario, associations, options, guess);
   const double graph_time = seconds_since(start);
-  SmootherResult result = solve_factor_graph(graph, options);
+  SmootherOptions solve_options = options;
+  if (guess != nullptr && !guess->trajectory.empty()) solve_options.warm_start_poses = 0;
+  SmootherResult result = solve_factor_graph(graph, solve_options);
   result.summary.build_time_s += graph_time;
   return result;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/Core>
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/jet.h>

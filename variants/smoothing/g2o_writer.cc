@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 
+#include <Eigen/LU>
 #include <fmt/core.h>
 
 #include "core/io/atomic_file.h"

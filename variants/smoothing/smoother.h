@@ -31,10 +31,25 @@ struct SmootherOptions {
   // none). scale: the residual, in standard deviations, where the loss leaves the quadratic.
   SmootherLoss loss = SmootherLoss::kNone;
   double loss_scale = 1.0;
-  // SPARSE_SCHUR eliminates the landmarks first (they form an independent set); measured faster on
-  // Victoria Park and simulated worlds (results/smoothing/), hence the default.
-  SmootherLinearSolver linear_solver = SmootherLinearSolver::kSparseSchur;
+  // Both measured in results/smoothing/. SPARSE_SCHUR eliminates an independent set of variables that
+  // Ceres chooses, or exactly the landmarks with schur_landmarks_first (the bundle-adjustment choice;
+  // ~14x slower on Victoria Park, whose trees are re-seen over long spans and so couple distant poses).
+  SmootherLinearSolver linear_solver = SmootherLinearSolver::kSparseNormalCholesky;
+  bool schur_landmarks_first = false;
   int max_iterations = 100;
+  // Trust-region strategy: Levenberg-Marquardt (false) or Powell's dogleg (true); non-monotonic steps let
+  // the cost rise for a few iterations, which helps when dead reckoning starts far from the optimum.
+  bool dogleg = false;
+  bool nonmonotonic_steps = false;
+  // Warm start in the manner of incremental smoothing (iSAM): solve the graph restricted to the first
+  // warm_start_poses poses, then grow it by that many poses at a time, initialising each new pose by
+  // composing its odometry onto the solved ones and each new landmark from its first observation, with at
+  // most warm_start_iterations per intermediate solve; the last solve is the full problem. Dead reckoning
+  // over a long run (Victoria Park) starts batch LM in a poor basin; growing the problem avoids it.
+  // 0: one batch solve from the graph's initial values (use this with an initial guess, e.g. FastSLAM's).
+  // smooth() turns it off when given an initial trajectory.
+  int warm_start_poses = 500;
+  int warm_start_iterations = 10;
   int threads = 1;
   double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
@@ -109,7 +124,8 @@ struct SmootherResult {
 // Solves a graph from its initial values.
 SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOptions& options);
 
-// build_factor_graph + solve_factor_graph; summary.build_time_s includes both builds.
+// build_factor_graph + solve_factor_graph; summary.build_time_s includes both builds. With an initial
+// trajectory in `guess` the warm start is off: the guess is the starting point.
 SmootherResult smooth(const Scenario& scenario, const SmootherAssociations& associations,
                       const SmootherOptions& options, const SmootherInitialGuess* guess = nullptr);
 
