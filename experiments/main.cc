@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   arbor::cli::CommandAction action;
   arbor::cli::add_simulate_command(app, &action);
   arbor::cli::add_run_command(app, &action);
+#ifdef ARBOR_HAVE_SMOOTHER
+  arbor::cli::add_smooth_command(app, &action);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -14,6 +14,7 @@ using CommandAction = std::function<int()>;
 
 void add_simulate_command(CLI::App& app, CommandAction* action);
 void add_run_command(CLI::App& app, CommandAction* action);
+void add_smooth_command(CLI::App& app, CommandAction* action);  // only with ARBOR_HAVE_SMOOTHER
 
 }  // namespace arbor::cli
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include <Eigen/LU>
 #include <ceres/ceres.h>
 
 #include "core/check.h"
@@ -278,11 +279,28 @@ SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOption
                             Pose2::from_vector(Vec3(data.pose(i)[0], data.pose(i)[1], data.pose(i)[2]))});
   }
   std::vector<int> observations(data.landmark_count, 0);
-  for (const RangeBearingFactor& f : graph.range_bearings) ++observations[f.landmark];
-  for (const PointFactor& f : graph.points) ++observations[f.landmark];
+  std::vector<Mat2> information(data.landmark_count, Mat2::Zero());
+  const auto pose_at = [&](int i) { return Pose2{data.pose(i)[0], data.pose(i)[1], data.pose(i)[2]}; };
+  const auto landmark_at = [&](int j) { return Vec2(data.landmark(j)[0], data.landmark(j)[1]); };
+  for (const RangeBearingFactor& f : graph.range_bearings) {
+    Mat2 H;
+    range_bearing_predict(pose_at(f.pose), landmark_at(f.landmark), &H);
+    information[f.landmark] += H.transpose() * f.covariance.inverse() * H;
+    ++observations[f.landmark];
+  }
+  for (const PointFactor& f : graph.points) {
+    const double c = std::cos(data.pose(f.pose)[2]), sn = std::sin(data.pose(f.pose)[2]);
+    Mat2 H;  // d (R^T (m - p)) / d m = R^T
+    H << c, sn, -sn, c;
+    information[f.landmark] += H.transpose() * f.covariance.inverse() * H;
+    ++observations[f.landmark];
+  }
   result.landmarks.reserve(data.landmark_count);
-  for (int j = 0; j < data.landmark_count; ++j)
-    result.landmarks.push_back({graph.landmarks[j].id, Vec2(data.landmark(j)[0], data.landmark(j)[1]), observations[j]});
+  for (int j = 0; j < data.landmark_count; ++j) {
+    Mat2 covariance = information[j].inverse();
+    covariance = 0.5 * (covariance + covariance.transpose());
+    result.landmarks.push_back({graph.landmarks[j].id, landmark_at(j), covariance, observations[j]});
+  }
   return result;
 }
 

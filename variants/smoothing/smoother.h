@@ -113,6 +113,9 @@ struct SmoothedPose {
 struct SmoothedLandmark {
   std::int64_t id = 0;
   Vec2 position = Vec2::Zero();
+  // Covariance conditional on the smoothed poses: (sum_k H_k^T Sigma_k^-1 H_k)^-1 over its observations,
+  // H_k = d z_k / d landmark. Smaller than the full marginal (pose uncertainty is left out); cheap.
+  Mat2 covariance = Mat2::Identity();
   int observations = 0;
 };
 struct SmootherResult {
