@@ -79,9 +79,9 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                  s.landmarks, s.factors, s.iterations, s.initial_cost, s.final_cost, s.termination);
       fmt::print("  solve {:.3f} s (build {:.3f} s), gradient max norm {:.3g}\n", s.solve_time_s, s.build_time_s,
                  s.gradient_max_norm);
-      fmt::print("  ATE RMSE {} m (dead reckoning {} m{}), landmark RMSE {} m\n", show(r["ate_rmse_m"]),
-                 show(r["dead_reckoning_ate_m"]), r["ate_aligned"].get<bool>() ? ", SE(2)-aligned to GPS" : "",
-                 show(r["landmark_rmse_m"]));
+      fmt::print("  ATE RMSE {} m (SE(2)-aligned {} m; dead reckoning {} m{}), landmark RMSE {} m\n",
+                 show(r["ate_rmse_m"]), show(r["ate_aligned_rmse_m"]), show(r["dead_reckoning_ate_m"]),
+                 r["ate_aligned"].get<bool>() ? ", aligned to GPS" : "", show(r["landmark_rmse_m"]));
       fmt::print("  wrote {}/result.json, trajectory.tum, map.csv{}\n", config->out_dir,
                  config->g2o_path.empty() ? "" : ", " + config->g2o_path);
       return s.usable ? 0 : 1;
