@@ -29,6 +29,7 @@ void BM_Smoother_Solve(benchmark::State& state, std::shared_ptr<const FactorGrap
     last = r.summary;
   }
   state.counters["solve_s"] = last.solve_time_s;
+  state.counters["solve_cpu_s"] = last.solve_cpu_s;
   state.counters["iterations"] = last.iterations;
   state.counters["initial_cost"] = last.initial_cost;
   state.counters["final_cost"] = last.final_cost;

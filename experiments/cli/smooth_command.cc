@@ -77,8 +77,8 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                  *loss);
       fmt::print("  {} poses, {} landmarks, {} factors; {} iterations, cost {:.6g} -> {:.6g}, {}\n", s.poses,
                  s.landmarks, s.factors, s.iterations, s.initial_cost, s.final_cost, s.termination);
-      fmt::print("  solve {:.3f} s (build {:.3f} s), gradient max norm {:.3g}\n", s.solve_time_s, s.build_time_s,
-                 s.gradient_max_norm);
+      fmt::print("  solve {:.3f} s wall, {:.3f} s CPU (build {:.3f} s), gradient max norm {:.3g}\n", s.solve_time_s,
+                 s.solve_cpu_s, s.build_time_s, s.gradient_max_norm);
       fmt::print("  ATE RMSE {} m (SE(2)-aligned {} m; dead reckoning {} m{}), landmark RMSE {} m\n",
                  show(r["ate_rmse_m"]), show(r["ate_aligned_rmse_m"]), show(r["dead_reckoning_ate_m"]),
                  r["ate_aligned"].get<bool>() ? ", aligned to GPS" : "", show(r["landmark_rmse_m"]));

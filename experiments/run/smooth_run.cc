@@ -38,7 +38,8 @@ SmootherInitialGuess read_initial_guess(const std::string& dir, bool with_map) {
 }
 
 Json summary_json(const SmootherSummary& s) {
-  return {{"solve_time_s", s.solve_time_s},     {"build_time_s", s.build_time_s},
+  return {{"solve_time_s", s.solve_time_s},     {"solve_cpu_s", s.solve_cpu_s},
+          {"build_time_s", s.build_time_s},
           {"iterations", s.iterations},         {"initial_cost", s.initial_cost},
           {"final_cost", s.final_cost},         {"termination", s.termination},
           {"solution_usable", s.usable},        {"gradient_max_norm", s.gradient_max_norm},

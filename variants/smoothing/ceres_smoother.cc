@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <memory>
 #include <vector>
 
@@ -235,6 +236,7 @@ SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOption
   SmootherSummary& s = result.summary;
   ceres::Solver::Summary ceres_summary;
   const auto solve_start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
   if (warm_start) {
     WarmStart stages(graph, data, loss.get(), problem);
     const int chunk = options.warm_start_poses;
@@ -255,6 +257,7 @@ SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOption
     initial_cost = ceres_summary.initial_cost;
   }
   s.solve_time_s = seconds_since(solve_start);
+  s.solve_cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   s.build_time_s = build_time;
   s.initial_cost = initial_cost;
   s.final_cost = ceres_summary.final_cost;

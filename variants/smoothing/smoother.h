@@ -92,7 +92,9 @@ FactorGraph build_factor_graph(const Scenario& scenario, const SmootherAssociati
 
 struct SmootherSummary {
   double build_time_s = 0.0;   // scenario -> factor graph -> Ceres problem
-  double solve_time_s = 0.0;   // ceres::Solve, preprocessing included
+  double solve_time_s = 0.0;   // ceres::Solve, preprocessing included (wall clock)
+  double solve_cpu_s = 0.0;    // CPU time of the whole process (all threads) over the same span: on a busy
+                               // machine, with threads = 1, the better estimate of the unloaded wall time
   int iterations = 0;
   double initial_cost = 0.0;   // Ceres's cost: half the sum of squared whitened (robustified) residuals
   double final_cost = 0.0;
