@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
   arbor::cli::add_associate_command(app, &action);
   arbor::cli::add_relocalize_command(app, &action);
   arbor::cli::add_convert_command(app, &action);
+#ifdef ARBOR_HAVE_SMOOTHER
+  arbor::cli::add_smooth_command(app, &action);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

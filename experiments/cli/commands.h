@@ -17,6 +17,7 @@ void add_run_command(CLI::App& app, CommandAction* action);
 void add_associate_command(CLI::App& app, CommandAction* action);
 void add_relocalize_command(CLI::App& app, CommandAction* action);
 void add_convert_command(CLI::App& app, CommandAction* action);
+void add_smooth_command(CLI::App& app, CommandAction* action);  // only with ARBOR_HAVE_SMOOTHER
 
 }  // namespace arbor::cli
 
