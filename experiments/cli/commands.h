@@ -14,6 +14,8 @@ using CommandAction = std::function<int()>;
 
 void add_simulate_command(CLI::App& app, CommandAction* action);
 void add_run_command(CLI::App& app, CommandAction* action);
+void add_sweep_command(CLI::App& app, CommandAction* action);
+void add_merge_command(CLI::App& app, CommandAction* action);
 
 }  // namespace arbor::cli
 
