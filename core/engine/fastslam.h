@@ -1,0 +1,468 @@
+// The FastSLAM engine: a Rao-Blackwellised particle filter whose particles each carry a pose sample and a
+// map of independent 2x2 landmark EKFs (Montemerlo, Thrun, Koller & Wegbreit 2002: FastSLAM 1.0; Montemerlo,
+// Thrun, Koller & Wegbreit 2003: FastSLAM 2.0). Templated on the map back end and the association strategy;
+// per-particle work runs in tbb::parallel_for, everything that combines particles runs serially in particle
+// order, and all randomness comes from counter-based streams, so a run is bit-identical for any thread count
+// and any map back end.
+#ifndef ARBOR_CORE_ENGINE_FASTSLAM_H_
+#define ARBOR_CORE_ENGINE_FASTSLAM_H_
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/association/association_problem.h"
+#include "core/check.h"
+#include "core/engine/fastslam_options.h"
+#include "core/engine/map_concept.h"
+#include "core/engine/pose_history.h"
+#include "core/engine/resampling.h"
+#include "core/engine/rng.h"
+#include "core/io/scenario.h"
+#include "core/math/chi_square.h"
+#include "core/metrics/association_score.h"
+#include "core/models/motion_model.h"
+#include "core/models/range_bearing_model.h"
+
+namespace arbor {
+
+template <LandmarkMap Map>
+struct Particle {
+  Pose2 pose;
+  double log_weight = 0.0;
+  Map map;
+  PoseHistory history;
+  LandmarkId next_id = 0;       // ids in creation order: the same in every back end
+  AssociationCounts counts;     // this lineage's decisions scored against ground truth (metrics only)
+};
+
+// What one step did, summed over particles where it is a count.
+struct StepStats {
+  double n_eff = 0.0;       // effective sample size after weighting, before any resampling
+  bool resampled = false;   // whether this step began by resampling
+  std::int64_t hypotheses = 0;
+  std::int64_t tests = 0;
+  std::size_t best_landmarks = 0;
+};
+
+// Weighted mean and covariance of the particle poses (heading by circular mean, differences wrapped).
+struct PoseEstimate {
+  Pose2 mean;
+  Mat3 covariance = Mat3::Zero();
+};
+
+template <LandmarkMap Map, AssociationStrategy Assoc>
+class FastSlam {
+ public:
+  FastSlam(const Scenario& scenario, const FastSlamOptions& options)
+      : options_(options), motion_(scenario.motion), sensor_(scenario.sensor), strategy_(options.association),
+        arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
+    const std::string why = options.validate();
+    ARBOR_CHECK(why.empty(), "{}", why);
+    R_ = sensor_.R();
+    const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
+    log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
+                               std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
+    prune_ = !Assoc::kUsesGroundTruth || options.prune_with_known_association;
+    particles_.resize(options.particles);
+    for (int i = 0; i < options.particles; ++i) {
+      RandomStream rng(options.seed, ~std::uint64_t{0}, i, RandomPurpose::kMotion);
+      Pose2& pose = particles_[i].pose;
+      pose = scenario.initial_pose;
+      pose.x += scenario.initial_sigma.x() * rng.normal();
+      pose.y += scenario.initial_sigma.y() * rng.normal();
+      pose.theta = wrap_angle(pose.theta + scenario.initial_sigma.z() * rng.normal());
+      particles_[i].history.push(scenario.start_time_s, pose);
+    }
+    weights_.assign(options.particles, 1.0 / options.particles);
+  }
+
+  // Processes one step: resample if the previous step left N_eff low, then predict and (with a scan)
+  // associate, update and weight every particle.
+  void step(const ScenarioStep& step) {
+    stats_ = StepStats{};
+    if (step_index_ > 0 && last_n_eff_ < options_.resample_threshold * options_.particles) resample();
+    if (Assoc::kUsesGroundTruth) assign_known_ids(step);
+    arena_.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(particles_.size())), [&](const auto& range) {
+        Scratch& scratch = scratch_.local();
+        for (int i = range.begin(); i != range.end(); ++i) update_particle(particles_[i], step, i, scratch);
+      });
+    });
+    std::vector<double> log_weights(particles_.size());
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      log_weights[i] = particles_[i].log_weight;
+      ARBOR_CHECK(!std::isnan(log_weights[i]), "NaN weight for particle {} at step {}", i, step_index_);
+      stats_.hypotheses += particles_[i].step_hypotheses;
+      stats_.tests += particles_[i].step_tests;
+    }
+    last_n_eff_ = normalize_log_weights(log_weights, &weights_);
+    for (std::size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(weights_[i]);
+    stats_.n_eff = last_n_eff_;
+    stats_.best_landmarks = particles_[best_particle()].map.size();
+    ++step_index_;
+  }
+
+  const StepStats& last_step_stats() const { return stats_; }
+  std::int64_t steps_done() const { return step_index_; }
+  int particle_count() const { return static_cast<int>(particles_.size()); }
+  const Particle<Map>& particle(int i) const { return particles_[i]; }
+  double weight(int i) const { return weights_[i]; }
+
+  // The particle of highest weight (lowest index on ties).
+  int best_particle() const {
+    return static_cast<int>(std::max_element(weights_.begin(), weights_.end()) - weights_.begin());
+  }
+
+  PoseEstimate estimate() const {
+    PoseEstimate e;
+    double x = 0.0, y = 0.0, s = 0.0, c = 0.0;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      const Pose2& p = particles_[i].pose;
+      x += weights_[i] * p.x;
+      y += weights_[i] * p.y;
+      s += weights_[i] * std::sin(p.theta);
+      c += weights_[i] * std::cos(p.theta);
+    }
+    e.mean = {x, y, std::atan2(s, c)};
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      const Vec3 d = pose_error(particles_[i].pose, e.mean);
+      e.covariance += weights_[i] * d * d.transpose();
+    }
+    return e;
+  }
+
+  MapMemoryStats memory_stats() const {
+    MapMemoryStats total;
+    for (const auto& p : particles_) {
+      const MapMemoryStats m = p.map.memory_stats();
+      total.nodes += m.nodes;
+      total.bytes += m.bytes;
+      total.shared_nodes += m.shared_nodes;
+      total.shared_bytes += m.shared_bytes;
+    }
+    return total;
+  }
+
+ private:
+  // Particle plus per-step counters the serial reduction reads.
+  struct ParticleState : Particle<Map> {
+    std::int64_t step_hypotheses = 0;
+    std::int64_t step_tests = 0;
+  };
+
+  // A landmark that this scan updates (paired) or creates (new): a working copy, written back once.
+  struct Touched {
+    Landmark landmark;
+    bool is_new = false;
+  };
+  struct Scratch {
+    std::vector<Landmark> nearby;              // landmarks in the query box, ascending id
+    std::vector<int> candidate_of;             // problem candidate index -> index into nearby
+    AssociationProblem problem;
+    AssociationResult result;
+    typename Assoc::Scratch strategy;
+    std::vector<LandmarkId> decision;          // per measurement
+    std::vector<Touched> touched;
+    std::vector<int> touched_of;               // per measurement: index into touched, or -1
+  };
+
+  // Known association: every particle creates a landmark for a true id at the same step in the same order,
+  // so one table (true id -> landmark id) serves them all.
+  void assign_known_ids(const ScenarioStep& step) {
+    for (const Measurement& m : step.measurements)
+      if (m.truth_id >= 0 && !known_ids_.count(m.truth_id)) known_ids_.emplace(m.truth_id, next_known_id_++);
+  }
+
+  void resample() {
+    RandomStream rng(options_.seed, step_index_, 0, RandomPurpose::kResample);
+    const std::vector<int> parents = systematic_resample(weights_, rng.uniform());
+    std::vector<ParticleState> next(particles_.size());
+    arena_.execute([&] {
+      tbb::parallel_for(0, static_cast<int>(particles_.size()), [&](int i) { next[i] = particles_[parents[i]]; });
+    });
+    particles_.swap(next);
+    // The old maps are released in parallel too: for the naive back end freeing is as costly as copying.
+    arena_.execute([&] { tbb::parallel_for(0, static_cast<int>(next.size()), [&](int i) { next[i] = ParticleState{}; }); });
+    for (auto& p : particles_) p.log_weight = 0.0;
+    weights_.assign(particles_.size(), 1.0 / particles_.size());
+    stats_.resampled = true;
+  }
+
+  // Where the sensor could see: the landmarks in this box are the association candidates.
+  Box2 query_box(const Pose2& pose) const {
+    const double reach = sensor_.max_range_m + options_.candidate_range_margin_m;
+    return {pose.position() - Vec2(reach, reach), pose.position() + Vec2(reach, reach)};
+  }
+  bool in_candidate_view(const Vec2& z) const {
+    return z.x() <= sensor_.max_range_m + options_.candidate_range_margin_m &&
+           std::abs(z.y()) <= 0.5 * sensor_.fov_rad + options_.candidate_bearing_margin_rad;
+  }
+  bool in_evidence_view(const Vec2& z) const {
+    return z.x() <= sensor_.max_range_m - options_.evidence_range_margin_m &&
+           z.x() >= sensor_.min_range_m + options_.evidence_range_margin_m &&
+           std::abs(z.y()) <= 0.5 * sensor_.fov_rad - options_.evidence_bearing_margin_rad;
+  }
+
+  static double log_gaussian(const Vec2& innovation, const Mat2& S) {
+    return -0.5 * innovation.dot(S.ldlt().solve(innovation)) - std::log(2.0 * kPi) - 0.5 * std::log(S.determinant());
+  }
+
+  // Draws from N(mean, cov) with a symmetric square root, robust to a semi-definite covariance.
+  static Vec3 sample_gaussian(const Vec3& mean, const Mat3& cov, RandomStream& rng) {
+    Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (cov + cov.transpose()));
+    const Vec3 n(rng.normal(), rng.normal(), rng.normal());
+    const Vec3 scaled = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().cwiseProduct(n);
+    return mean + eig.eigenvectors() * scaled;
+  }
+
+  // Samples x_t ~ p(x_t | x_{t-1}, u_t) by perturbing the control (the models' Q_u are diagonal).
+  Pose2 sample_motion(const Pose2& pose, const Vec3& u, RandomStream& rng) const {
+    const Mat3 Q_u = motion_.control_covariance(u);
+    Vec3 noisy = u;
+    for (int k = 0; k < 3; ++k) noisy[k] += std::sqrt(Q_u(k, k)) * rng.normal();
+    return motion_.apply(pose, noisy);
+  }
+
+  void update_particle(ParticleState& p, const ScenarioStep& step, int index, Scratch& s) {
+    p.step_hypotheses = p.step_tests = 0;
+    RandomStream rng(options_.seed, step_index_, index, RandomPurpose::kMotion);
+    const bool fastslam2 = options_.version == FilterVersion::kFastSlam2;
+    const bool record = step.has_scan || step.truth_pose.has_value();
+    if (!step.has_scan || step.measurements.empty()) {
+      p.pose = sample_motion(p.pose, step.control, rng);
+      if (step.has_scan) apply_negative_evidence(p, s, /*touched=*/{});
+      if (record) p.history.push(step.time_s, p.pose);
+      return;
+    }
+
+    // FastSLAM 1.0 associates at the sampled pose (P = 0); 2.0 at the motion prediction with its covariance,
+    // because the proposal is drawn only after association (DESIGN.md §4).
+    Mat3 P_pred = Mat3::Zero();
+    Pose2 association_pose;
+    if (fastslam2) {
+      association_pose = motion_.apply(p.pose, step.control);
+      P_pred = motion_.prediction_covariance(p.pose, step.control);
+    } else {
+      p.pose = sample_motion(p.pose, step.control, rng);
+      association_pose = p.pose;
+    }
+    gather_candidates(p, association_pose, fastslam2 ? P_pred : Mat3::Zero(), step, s);
+    decide(p, step, s);
+
+    // Collect the landmarks the decisions touch (copies; the map is written once at the end).
+    const auto& measurements = step.measurements;
+    s.touched.clear();
+    s.touched_of.assign(measurements.size(), -1);
+    for (std::size_t k = 0; k < measurements.size(); ++k) {
+      const LandmarkId id = s.decision[k];
+      if (id < 0) continue;
+      int t = 0;
+      while (t < static_cast<int>(s.touched.size()) && s.touched[t].landmark.id != id) ++t;
+      if (t == static_cast<int>(s.touched.size())) {
+        const Landmark* lm = p.map.find(id);
+        ARBOR_CHECK(lm != nullptr, "association paired with landmark {} that the map does not hold", id);
+        s.touched.push_back({*lm, false});
+      }
+      s.touched_of[k] = t;
+    }
+
+    double log_weight = 0.0;
+    if (fastslam2) {
+      // Montemerlo et al. 2003, §3: the proposal N(mu, Sigma) folds each paired measurement into the motion
+      // prediction by an EKF step on the pose; the weight is the product of the measurement marginals
+      // N(z; h(mu), H_x Sigma H_x^T + Q) taken in the same sequence.
+      Vec3 mu = association_pose.vector();
+      Mat3 Sigma = P_pred;
+      for (std::size_t k = 0; k < measurements.size(); ++k) {
+        if (s.touched_of[k] < 0) continue;
+        const Landmark& lm = s.touched[s.touched_of[k]].landmark;
+        Mat2 H_m;
+        Mat23 H_x;
+        const Vec2 z_hat = range_bearing_predict(Pose2::from_vector(mu), lm.mean, &H_m, &H_x);
+        const Mat2 Q = H_m * lm.cov * H_m.transpose() + R_;
+        const Mat2 S = H_x * Sigma * H_x.transpose() + Q;
+        const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
+        log_weight += log_gaussian(nu, S);
+        const Mat32 K = Sigma * H_x.transpose() * S.inverse();
+        mu += K * nu;
+        mu.z() = wrap_angle(mu.z());
+        const Mat3 I_KH = Mat3::Identity() - K * H_x;
+        Sigma = I_KH * Sigma * I_KH.transpose() + K * Q * K.transpose();  // Joseph form keeps it SPD
+      }
+      RandomStream proposal_rng(options_.seed, step_index_, index, RandomPurpose::kProposal);
+      p.pose = Pose2::from_vector(sample_gaussian(mu, Sigma, proposal_rng));
+    }
+
+    // Landmark EKF updates at the final pose (Montemerlo 2002, eq. 8-11; Joseph form).
+    for (std::size_t k = 0; k < measurements.size(); ++k) {
+      if (s.touched_of[k] < 0) continue;
+      Landmark& lm = s.touched[s.touched_of[k]].landmark;
+      Mat2 H_m;
+      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m);
+      const Mat2 Q = H_m * lm.cov * H_m.transpose() + R_;
+      const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
+      if (!fastslam2) log_weight += log_gaussian(nu, Q);  // FastSLAM 1.0 importance weight
+      const Mat2 K = lm.cov * H_m.transpose() * Q.inverse();
+      lm.mean += K * nu;
+      const Mat2 I_KH = Mat2::Identity() - K * H_m;
+      lm.cov = I_KH * lm.cov * I_KH.transpose() + K * R_ * K.transpose();
+      lm.cov = 0.5 * (lm.cov + lm.cov.transpose());
+      ARBOR_CHECK(lm.cov(0, 0) > 0.0 && lm.cov.determinant() > 0.0, "landmark {} covariance lost definiteness", lm.id);
+      lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
+      const float sig = measurements[k].signature;
+      if (!std::isnan(sig)) lm.signature = std::isnan(lm.signature) ? sig : lm.signature + 0.2f * (sig - lm.signature);
+    }
+
+    // New landmarks from the measurements the association left unexplained (inverse measurement model).
+    for (std::size_t k = 0; k < measurements.size(); ++k) {
+      if (s.decision[k] != kNewLandmark) continue;
+      log_weight += log_likelihood_unpaired_;
+      Landmark lm;
+      lm.id = Assoc::kUsesGroundTruth ? known_ids_.at(measurements[k].truth_id) : p.next_id++;
+      lm.mean = range_bearing_inverse(p.pose, measurements[k].z());
+      lm.cov = range_bearing_initial_covariance(p.pose, measurements[k].z(), R_);
+      lm.log_odds = static_cast<float>(options_.log_odds_initial);
+      lm.signature = measurements[k].signature;
+      lm.truth_label = measurements[k].truth_id >= 0 ? measurements[k].truth_id : -1;
+      s.touched_of[k] = static_cast<int>(s.touched.size());
+      s.touched.push_back({lm, true});
+    }
+    for (std::size_t k = 0; k < measurements.size(); ++k)
+      if (s.decision[k] == kSpurious) log_weight += log_likelihood_unpaired_;
+
+    // Locality (Ge & Lewis 2006, ch. 9): everything observed in this scan was seen together.
+    for (auto& a : s.touched)
+      for (const auto& b : s.touched)
+        if (a.landmark.id != b.landmark.id) a.landmark.locality.add(b.landmark.id);
+
+    for (const auto& t : s.touched) {
+      if (t.is_new) p.map.insert(t.landmark);
+      else p.map.set(t.landmark);
+    }
+    apply_negative_evidence(p, s, s.touched);
+    if (Assoc::kUsesGroundTruth) p.next_id = next_known_id_;
+    p.log_weight += log_weight;
+    if (record) p.history.push(step.time_s, p.pose);
+  }
+
+  // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from pose).
+  void gather_candidates(const Particle<Map>& p, const Pose2& pose, const Mat3& P, const ScenarioStep& step, Scratch& s) {
+    s.nearby.clear();
+    p.map.visit_near(query_box(pose), [&](const Landmark& lm) { s.nearby.push_back(lm); });
+    if (Assoc::kUsesGroundTruth) return;
+    AssociationProblem& problem = s.problem;
+    problem.measurements.clear();
+    for (const Measurement& m : step.measurements) problem.measurements.push_back({m.z(), m.signature});
+    problem.candidates.clear();
+    s.candidate_of.clear();
+    problem.R = R_;
+    problem.P = P;
+    problem.signature_sigma = sensor_.sigma_signature;
+    for (std::size_t j = 0; j < s.nearby.size(); ++j) {
+      const Landmark& lm = s.nearby[j];
+      AssociationCandidate c;
+      Mat2 H_m;
+      c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
+      if (!in_candidate_view(c.z_hat)) continue;
+      c.id = lm.id;
+      c.S = H_m * lm.cov * H_m.transpose() + R_;
+      c.position = lm.mean;
+      c.position_cov = lm.cov;
+      c.signature = lm.signature;
+      c.locality = lm.locality;
+      problem.candidates.push_back(c);
+      s.candidate_of.push_back(static_cast<int>(j));
+    }
+  }
+
+  // One decision per measurement (landmark id, kNewLandmark or kSpurious), and the lineage's score.
+  void decide(ParticleState& p, const ScenarioStep& step, Scratch& s) {
+    const auto& measurements = step.measurements;
+    s.decision.assign(measurements.size(), kSpurious);
+    if constexpr (Assoc::kUsesGroundTruth) {
+      for (std::size_t k = 0; k < measurements.size(); ++k) {
+        if (measurements[k].truth_id < 0) continue;  // clutter is recognised as such
+        const LandmarkId id = known_ids_.at(measurements[k].truth_id);
+        s.decision[k] = p.map.find(id) ? id : kNewLandmark;
+      }
+      return;
+    } else {
+      strategy_.solve(s.problem, s.strategy, s.result);
+      ARBOR_CHECK(s.result.pairing.size() == measurements.size(), "strategy {} returned {} decisions for {} measurements",
+                  Assoc::kName, s.result.pairing.size(), measurements.size());
+      s.decision = s.result.pairing;
+      p.step_hypotheses = s.result.stats.hypotheses;
+      p.step_tests = s.result.stats.tests;
+      score_decisions(p, measurements, s);
+    }
+  }
+
+  // Scores each decision against the scenario's ground truth, where it has any (metrics only).
+  void score_decisions(Particle<Map>& p, const std::vector<Measurement>& measurements, const Scratch& s) const {
+    for (std::size_t k = 0; k < measurements.size(); ++k) {
+      const std::int32_t truth = measurements[k].truth_id;
+      if (truth == kTruthUnknown) continue;
+      ++p.counts.scored;
+      bool candidate_of_same_truth = false;
+      for (std::size_t c = 0; truth >= 0 && c < s.candidate_of.size(); ++c)
+        candidate_of_same_truth |= s.nearby[s.candidate_of[c]].truth_label == truth;
+      const LandmarkId d = s.decision[k];
+      if (d >= 0) {
+        const Landmark* lm = p.map.find(d);
+        if (truth >= 0 && lm && lm->truth_label == truth) ++p.counts.true_matches;
+        else ++p.counts.false_matches;
+      } else {
+        if (candidate_of_same_truth) ++p.counts.missed_matches;
+        if (d == kNewLandmark && (truth < 0 || candidate_of_same_truth)) ++p.counts.false_new;
+      }
+    }
+  }
+
+  // Landmarks predicted well inside the view but not observed lose evidence and may be pruned.
+  void apply_negative_evidence(ParticleState& p, Scratch& s, const std::vector<Touched>& touched) {
+    if (s.nearby.empty()) {
+      // Only the no-measurement path arrives here without candidates gathered.
+      p.map.visit_near(query_box(p.pose), [&](const Landmark& lm) { s.nearby.push_back(lm); });
+    }
+    for (const Landmark& lm : s.nearby) {
+      bool seen = false;
+      for (const auto& t : touched) seen |= t.landmark.id == lm.id;
+      if (seen || !in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
+      Landmark updated = lm;
+      updated.log_odds = static_cast<float>(lm.log_odds - options_.log_odds_miss);
+      if (prune_ && updated.log_odds < options_.log_odds_prune) p.map.erase(lm.id);
+      else p.map.set(updated);
+    }
+    s.nearby.clear();
+  }
+
+  FastSlamOptions options_;
+  MotionModel motion_;
+  SensorModel sensor_;
+  Mat2 R_;
+  Assoc strategy_;
+  double log_likelihood_unpaired_ = 0.0;
+  bool prune_ = true;
+  tbb::task_arena arena_;
+  std::vector<ParticleState> particles_;
+  std::vector<double> weights_;
+  tbb::enumerable_thread_specific<Scratch> scratch_;
+  std::unordered_map<std::int32_t, LandmarkId> known_ids_;
+  LandmarkId next_known_id_ = 0;
+  std::int64_t step_index_ = 0;
+  double last_n_eff_ = 0.0;
+  StepStats stats_;
+};
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ENGINE_FASTSLAM_H_

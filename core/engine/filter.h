@@ -1,0 +1,61 @@
+// The run-time boundary: one virtual call per time step, never per particle. FilterImpl<Map, Assoc> wraps
+// the templated engine; variants/registry.h builds one from the names given on the command line.
+#ifndef ARBOR_CORE_ENGINE_FILTER_H_
+#define ARBOR_CORE_ENGINE_FILTER_H_
+
+#include <string>
+#include <vector>
+
+#include "core/engine/fastslam.h"
+
+namespace arbor {
+
+class Filter {
+ public:
+  virtual ~Filter() = default;
+  virtual void step(const ScenarioStep& step) = 0;
+  virtual const StepStats& last_step_stats() const = 0;
+  virtual PoseEstimate estimate() const = 0;
+  // The particle of highest weight: its trajectory (oldest first), its map (ascending id) and its lineage's
+  // association score.
+  virtual std::vector<TimedPose> best_trajectory() const = 0;
+  virtual std::vector<Landmark> best_map() const = 0;
+  virtual AssociationCounts best_association_counts() const = 0;
+  // Summed over all particles; shared nodes are counted once per particle that references them.
+  virtual MapMemoryStats memory_stats() const = 0;
+  virtual std::string map_name() const = 0;
+  virtual std::string association_name() const = 0;
+};
+
+template <LandmarkMap Map, AssociationStrategy Assoc>
+class FilterImpl final : public Filter {
+ public:
+  FilterImpl(const Scenario& scenario, const FastSlamOptions& options) : engine_(scenario, options) {}
+
+  void step(const ScenarioStep& step) override { engine_.step(step); }
+  const StepStats& last_step_stats() const override { return engine_.last_step_stats(); }
+  PoseEstimate estimate() const override { return engine_.estimate(); }
+  std::vector<TimedPose> best_trajectory() const override {
+    return engine_.particle(engine_.best_particle()).history.to_vector();
+  }
+  std::vector<Landmark> best_map() const override {
+    std::vector<Landmark> out;
+    engine_.particle(engine_.best_particle()).map.for_each([&](const Landmark& lm) { out.push_back(lm); });
+    return out;
+  }
+  AssociationCounts best_association_counts() const override {
+    return engine_.particle(engine_.best_particle()).counts;
+  }
+  MapMemoryStats memory_stats() const override { return engine_.memory_stats(); }
+  std::string map_name() const override { return std::string(Map::kName); }
+  std::string association_name() const override { return std::string(Assoc::kName); }
+
+  const FastSlam<Map, Assoc>& engine() const { return engine_; }
+
+ private:
+  FastSlam<Map, Assoc> engine_;
+};
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ENGINE_FILTER_H_

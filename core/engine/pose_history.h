@@ -1,0 +1,78 @@
+// A particle's trajectory as a persistent singly linked list, newest pose first. Recording a pose prepends
+// one node (O(1)); resampled particles share their common past, so a copy is one reference-count increment
+// instead of an O(T) vector copy (DESIGN.md §2).
+#ifndef ARBOR_CORE_ENGINE_POSE_HISTORY_H_
+#define ARBOR_CORE_ENGINE_POSE_HISTORY_H_
+
+#include <atomic>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/math/pose2.h"
+
+namespace arbor {
+
+struct TimedPose {
+  double time_s = 0.0;
+  Pose2 pose;
+};
+
+class PoseHistory {
+ public:
+  PoseHistory() = default;
+  PoseHistory(const PoseHistory& o) : head_(o.head_) { retain(head_); }
+  PoseHistory(PoseHistory&& o) noexcept : head_(std::exchange(o.head_, nullptr)) {}
+  PoseHistory& operator=(PoseHistory o) noexcept {
+    std::swap(head_, o.head_);
+    return *this;
+  }
+  ~PoseHistory() { release(head_); }
+
+  // Prepends a pose; shares every older node with the histories this one was copied from.
+  void push(double time_s, const Pose2& pose) {
+    head_ = new Node{{1}, head_, {time_s, pose}};
+    live_nodes_counter().fetch_add(1, std::memory_order_relaxed);
+  }
+
+  bool empty() const { return head_ == nullptr; }
+  // Oldest first; O(T).
+  std::vector<TimedPose> to_vector() const {
+    std::vector<TimedPose> out;
+    for (const Node* n = head_; n; n = n->parent) out.push_back(n->entry);
+    return {out.rbegin(), out.rend()};
+  }
+  // Total nodes ever allocated minus freed, all histories together: the leak check of the tests.
+  static std::int64_t live_nodes() { return live_nodes_counter().load(std::memory_order_relaxed); }
+
+ private:
+  struct Node {
+    std::atomic<std::int32_t> refs;
+    Node* parent;
+    TimedPose entry;
+  };
+
+  static std::atomic<std::int64_t>& live_nodes_counter() {
+    static std::atomic<std::int64_t> counter{0};
+    return counter;
+  }
+  static void retain(Node* n) {
+    if (n) n->refs.fetch_add(1, std::memory_order_relaxed);
+  }
+  // Frees the nodes whose count drops to zero, walking towards the root iteratively: a 60,000-pose history
+  // released by recursion would overflow the stack.
+  static void release(Node* n) {
+    while (n && n->refs.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      Node* parent = n->parent;
+      delete n;
+      live_nodes_counter().fetch_sub(1, std::memory_order_relaxed);
+      n = parent;
+    }
+  }
+
+  Node* head_ = nullptr;
+};
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ENGINE_POSE_HISTORY_H_

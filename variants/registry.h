@@ -1,0 +1,40 @@
+// The registry: the one place that lists the variants the CLI can choose. Adding a map back end or an
+// association strategy is one new header (or .h/.cc pair) plus one line in a list below; tests and
+// benchmarks iterate the same lists.
+#ifndef ARBOR_VARIANTS_REGISTRY_H_
+#define ARBOR_VARIANTS_REGISTRY_H_
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/engine/filter.h"
+#include "variants/association/known_association.h"
+#include "variants/maps/vector_map.h"
+
+namespace arbor {
+
+template <class... T>
+struct TypeList {};
+
+using MapBackends = TypeList<VectorMap>;
+using AssociationStrategies = TypeList<KnownAssociation>;
+
+// Builds the engine for the named variants; throws InputError (field "map" or "assoc") listing the valid names.
+std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
+                                    const FastSlamOptions& options);
+
+std::vector<std::string> map_backend_names();
+std::vector<std::string> association_names();
+
+// The engine instantiations of one map back end with every strategy. Each back end's instantiations live
+// in their own translation unit (variants/engine/filters_<name>.cc, one ARBOR_INSTANTIATE_FILTERS line) so
+// the cross product compiles in parallel, as Ceres spreads its Schur specialisations over files.
+template <LandmarkMap Map>
+std::unique_ptr<Filter> make_filter_for_map(std::string_view assoc, const Scenario& scenario,
+                                            const FastSlamOptions& options);
+
+}  // namespace arbor
+
+#endif  // ARBOR_VARIANTS_REGISTRY_H_
