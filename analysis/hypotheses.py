@@ -2,7 +2,7 @@
 """Hypotheses figure: association hypotheses visited against map size, per strategy (locality-restricted
 vs unrestricted interpretation tree), log-log with fitted slopes (Ge & Lewis 2006: linear in n with locality).
 Reads: results.jsonl columns world_landmarks (or landmarks), assoc, and the first present of
-assoc_hypotheses_mean / hypotheses_mean / assoc_hypotheses / hypotheses."""
+assoc_hypotheses_mean / hypotheses_mean / hypotheses (per step, divided by steps) / assoc_hypotheses."""
 
 import sys
 
@@ -11,11 +11,13 @@ import numpy as np
 import arbor_results as ar
 
 FIGURE = "hypotheses_vs_map_size.png"
-CANDIDATES = ["assoc_hypotheses_mean", "hypotheses_mean", "assoc_hypotheses", "hypotheses"]
+CANDIDATES = ["assoc_hypotheses_mean", "hypotheses_mean", "hypotheses_per_step", "assoc_hypotheses", "hypotheses"]
 
 
 def make(df, out_dir, results_path=None):
     df = ar.ok_rows(df)
+    if ar.has_data(df, "hypotheses", "steps"):  # `arbor run` reports the run's total; per step compares runs
+        df["hypotheses_per_step"] = df["hypotheses"] / df["steps"]
     metric = next((c for c in CANDIDATES if ar.has_data(df, c)), None)
     x_col = "world_landmarks" if ar.has_data(df, "world_landmarks") else "landmarks"
     if metric is None or not ar.has_data(df, x_col) or df[x_col].nunique() < 2:

@@ -32,8 +32,6 @@ std::string csv_escape(const std::string& cell) {
   return out + "\"";
 }
 
-std::string number_text(std::int64_t v) { return fmt::format("{}", v); }
-
 }  // namespace
 
 std::vector<std::string> result_columns(const std::vector<std::string>& metrics) {
@@ -46,27 +44,33 @@ std::vector<std::string> result_columns(const std::vector<std::string>& metrics)
   return columns;
 }
 
-std::vector<std::pair<std::string, JsonValue>> param_cells(const RunParams& run) {
+std::vector<std::pair<std::string, nlohmann::ordered_json>> param_cells(const RunParams& run) {
+  using Json = nlohmann::ordered_json;
   const bool sim = run.dataset.empty();
-  const auto num = [](std::int64_t v) { return JsonValue::number(number_text(v)); };
-  std::vector<std::pair<std::string, JsonValue>> cells{
-      {"key", JsonValue::string(run.key())},
-      {"dataset", sim ? JsonValue::null() : JsonValue::string(run.dataset)},
-      {"world", sim ? JsonValue::string(run.world) : JsonValue::null()},
-      {"world_landmarks", sim ? num(run.world_landmarks) : JsonValue::null()},
-      {"world_steps", sim ? num(run.world_steps) : JsonValue::null()},
-      {"clutter", sim ? JsonValue::number(fmt::format("{}", run.clutter)) : JsonValue::null()},
-      {"world_seed", sim ? num(run.simulation_seed()) : JsonValue::null()},
-      {"filter", JsonValue::string(run.filter)},
-      {"map", run.map.empty() ? JsonValue::null() : JsonValue::string(run.map)},
-      {"assoc", JsonValue::string(run.assoc)},
-      {"particles", run.particles > 0 ? num(run.particles) : JsonValue::null()},
-      {"seed", num(run.seed)},
-      {"threads", num(run.threads)},
-      {"scenario", JsonValue::string(sim ? "scenarios/" + run.scenario_name() + ".scn" : run.dataset)},
-      {"run_dir", JsonValue::string("runs/" + run.key())},
+  const auto sim_only = [&](Json v) { return sim ? v : Json(); };
+  return {
+      {"key", run.key()},
+      {"dataset", sim ? Json() : Json(run.dataset)},
+      {"world", sim_only(run.world)},
+      {"world_landmarks", sim_only(run.world_landmarks)},
+      {"world_steps", sim_only(run.world_steps)},
+      {"clutter", sim_only(run.clutter)},
+      {"world_seed", sim_only(run.simulation_seed())},
+      {"filter", run.filter},
+      {"map", run.map.empty() ? Json() : Json(run.map)},
+      {"assoc", run.assoc},
+      {"particles", run.particles > 0 ? Json(run.particles) : Json()},
+      {"seed", run.seed},
+      {"threads", run.threads},
+      {"scenario", sim ? "scenarios/" + run.scenario_name() + ".scn" : run.dataset},
+      {"run_dir", "runs/" + run.key()},
   };
-  return cells;
+}
+
+std::string cell_text(const nlohmann::ordered_json& value) {
+  if (value.is_null()) return {};
+  if (value.is_string()) return value.get<std::string>();
+  return value.dump();
 }
 
 std::vector<ResultRow> read_result_rows(const std::string& jsonl_path) {
@@ -85,9 +89,13 @@ std::vector<ResultRow> read_result_rows(const std::string& jsonl_path) {
     const std::string_view body(text.data() + start, end - start);
     start = end + 1;
     if (body.find_first_not_of(" \t\r") == std::string_view::npos) continue;
-    ResultRow row = parse_json(body, jsonl_path, line);
-    const JsonValue* key = row.find("key");
-    if (row.kind != JsonValue::Kind::kObject || !key || key->kind != JsonValue::Kind::kString)
+    ResultRow row;
+    try {
+      row = ResultRow::parse(body);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(jsonl_path, line, "", fmt::format("malformed JSON row: {}", e.what()));
+    }
+    if (!row.is_object() || !row.contains("key") || !row["key"].is_string())
       throw InputError(jsonl_path, line, "key", "a result row must be a JSON object with a string 'key'");
     rows.push_back(std::move(row));
   }
@@ -114,8 +122,8 @@ std::string csv_header(const std::vector<std::string>& columns) {
 std::string csv_line(const ResultRow& row, const std::vector<std::string>& columns) {
   std::string out;
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    const JsonValue* v = row.find(columns[i]);
-    out += (i ? "," : "") + csv_escape(v ? v->cell() : std::string());
+    const auto it = row.find(columns[i]);
+    out += (i ? "," : "") + csv_escape(it != row.end() ? cell_text(*it) : std::string());
   }
   return out + "\n";
 }
@@ -123,7 +131,7 @@ std::string csv_line(const ResultRow& row, const std::vector<std::string>& colum
 void append_result_row(const std::string& dir, const ResultRow& row, const std::vector<std::string>& columns) {
   // JSONL first: it decides what resume skips. A kill between the two writes leaves the CSV one row short,
   // and the next start regenerates the CSV from the JSONL.
-  append_line_durably(dir + "/" + kResultsJsonl, row.encode() + "\n");
+  append_line_durably(dir + "/" + kResultsJsonl, row.dump() + "\n");
   const std::string csv = dir + "/" + kResultsCsv;
   if (!std::filesystem::exists(csv)) append_line_durably(csv, csv_header(columns));
   append_line_durably(csv, csv_line(row, columns));
@@ -132,7 +140,7 @@ void append_result_row(const std::string& dir, const ResultRow& row, const std::
 void write_result_files(const std::string& dir, const std::vector<ResultRow>& rows, const std::vector<std::string>& columns) {
   std::string jsonl, csv = csv_header(columns);
   for (const auto& row : rows) {
-    jsonl += row.encode() + "\n";
+    jsonl += row.dump() + "\n";
     csv += csv_line(row, columns);
   }
   write_file_atomically(dir + "/" + kResultsJsonl, jsonl);

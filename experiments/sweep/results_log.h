@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "experiments/sweep/json_value.h"
+#include <nlohmann/json.hpp>
+
 #include "experiments/sweep/sweep_spec.h"
 
 namespace arbor {
@@ -21,10 +22,13 @@ inline constexpr const char* kResultsCsv = "results.csv";
 std::vector<std::string> result_columns(const std::vector<std::string>& metrics);
 
 // A row is a JSON object whose members are exactly result_columns(), in that order.
-using ResultRow = JsonValue;
+using ResultRow = nlohmann::ordered_json;
 
 // The parameter members of a row (key, then every RunParams field as a column).
-std::vector<std::pair<std::string, JsonValue>> param_cells(const RunParams& run);
+std::vector<std::pair<std::string, nlohmann::ordered_json>> param_cells(const RunParams& run);
+
+// A cell as CSV text: strings unquoted, null empty, numbers and booleans as JSON writes them.
+std::string cell_text(const nlohmann::ordered_json& value);
 
 // Reads DIR/results.jsonl; a missing file is an empty list. A last line without '\n' is ignored; a complete
 // line that is not a JSON object with a string "key" throws InputError naming the line.

@@ -33,16 +33,15 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
                                    manifest->spec_hash, first_dir, first->spec_hash));
     }
     for (auto& row : read_result_rows(dir + "/" + kResultsJsonl)) {
-      const std::string key = row.find("key")->text;
+      const std::string key = row["key"].get<std::string>();
       const auto it = by_key.find(key);
       if (it == by_key.end()) {
         by_key.emplace(key, std::move(row));
         continue;
       }
       ++summary.duplicates;
-      const JsonValue* old_status = it->second.find("status");
-      const JsonValue* new_status = row.find("status");
-      if ((!old_status || old_status->text != "ok") && new_status && new_status->text == "ok") it->second = std::move(row);
+      const auto is_ok = [](const ResultRow& r) { return r.value("status", std::string()) == "ok"; };
+      if (!is_ok(it->second) && is_ok(row)) it->second = std::move(row);
     }
     ++summary.inputs;
   }

@@ -130,57 +130,58 @@ class ProgressLine {
   Clock::time_point printed_{};
 };
 
-std::optional<JsonValue> read_result_json(const std::string& path, std::string* error) {
+using Json = nlohmann::ordered_json;
+
+std::optional<Json> read_result_json(const std::string& path, std::string* error) {
   std::ifstream in(path);
   if (!in) {
     *error = "run exited 0 but wrote no result.json";
     return std::nullopt;
   }
-  std::stringstream text;
-  text << in.rdbuf();
   try {
-    JsonValue doc = parse_json(text.str(), path);
-    if (doc.kind != JsonValue::Kind::kObject) throw InputError(path, 1, "", "result.json is not an object");
-    return doc;
-  } catch (const InputError& e) {
-    *error = e.what();
-    return std::nullopt;
+    Json doc = Json::parse(in);
+    if (doc.is_object()) return doc;
+    *error = path + ": result.json is not a JSON object";
+  } catch (const nlohmann::json::parse_error& e) {
+    *error = fmt::format("{}: malformed JSON: {}", path, e.what());
   }
+  return std::nullopt;
 }
 
-const JsonValue* config_field(const JsonValue* result, const char* name) {
-  if (!result) return nullptr;
-  const JsonValue* config = result->find("config");
-  const JsonValue* v = config ? config->find(name) : nullptr;
-  return v && v->is_scalar() && v->kind != JsonValue::Kind::kNull ? v : nullptr;
+// A scalar of result.json's "config" object, or nullptr.
+const Json* config_field(const Json* result, const char* name) {
+  if (!result || !result->contains("config") || !(*result)["config"].is_object()) return nullptr;
+  const Json& config = (*result)["config"];
+  const auto it = config.find(name);
+  return it != config.end() && it->is_primitive() && !it->is_null() ? &*it : nullptr;
 }
 
 // Assembles a row with exactly `columns`, in order.
 ResultRow make_row(const RunParams& run, const std::vector<std::string>& columns, const std::vector<std::string>& metrics,
-                   const std::string& status, const std::string& error, const JsonValue* result, const ChildExit* exit,
+                   const std::string& status, const std::string& error, const Json* result, const ChildExit* exit,
                    double wall_s) {
-  std::map<std::string, JsonValue> cells;
+  std::map<std::string, Json> cells;
   for (auto& [name, value] : param_cells(run)) cells[name] = value;
-  cells["status"] = JsonValue::string(status);
-  cells["error"] = error.empty() ? JsonValue::null() : JsonValue::string(error);
+  cells["status"] = status;
+  cells["error"] = error.empty() ? Json() : Json(error);
   for (const auto& m : metrics) {
-    const JsonValue* v = result ? result->find(m) : nullptr;
-    cells[m] = v && v->is_scalar() ? *v : JsonValue::null();
+    const auto it = result ? result->find(m) : Json::const_iterator();
+    cells[m] = result && it != result->end() && it->is_primitive() ? *it : Json();
   }
+  // Provenance from the run itself (its result.json), else from this process: the same binary.
   const auto provenance = [&](const char* name, const std::string& mine) {
-    const JsonValue* v = config_field(result, name);
-    cells[name] = v ? *v : JsonValue::string(mine);
+    const Json* v = config_field(result, name);
+    cells[name] = v ? *v : Json(mine);
   };
   provenance("commit", git_commit());
   provenance("host", host_name());
   provenance("compiler", compiler());
   provenance("build", build_type());
-  cells["process_wall_s"] = wall_s >= 0 ? JsonValue::number(fmt::format("{:.6f}", wall_s)) : JsonValue::null();
-  cells["exit_code"] = exit && exit->signal == 0 && exit->exit_code >= 0 ? JsonValue::number(fmt::format("{}", exit->exit_code)) : JsonValue::null();
-  cells["finished_at"] = JsonValue::string(utc_now());
-  ResultRow row;
-  row.kind = JsonValue::Kind::kObject;
-  for (const auto& c : columns) row.members.emplace_back(c, cells.count(c) ? cells[c] : JsonValue::null());
+  cells["process_wall_s"] = wall_s >= 0 ? Json(std::round(wall_s * 1e6) / 1e6) : Json();
+  cells["exit_code"] = exit && exit->signal == 0 && exit->exit_code >= 0 ? Json(exit->exit_code) : Json();
+  cells["finished_at"] = utc_now();
+  ResultRow row = ResultRow::object();
+  for (const auto& c : columns) row[c] = cells.count(c) ? cells[c] : Json();
   return row;
 }
 
@@ -273,14 +274,13 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   drop_partial_last_line(jsonl);
   std::vector<ResultRow> rows = read_result_rows(jsonl);
   std::map<std::string, std::size_t> last_of_key;
-  for (std::size_t i = 0; i < rows.size(); ++i) last_of_key[rows[i].find("key")->text] = i;
+  for (std::size_t i = 0; i < rows.size(); ++i) last_of_key[rows[i]["key"].get<std::string>()] = i;
   std::vector<ResultRow> kept;
   std::set<std::string> done;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const std::string& key = rows[i].find("key")->text;
+    const std::string key = rows[i]["key"].get<std::string>();
     if (last_of_key[key] != i) continue;
-    const JsonValue* status = rows[i].find("status");
-    if (!options.retry_failed || (status && status->text == "ok")) done.insert(key);
+    if (!options.retry_failed || rows[i].value("status", std::string()) == "ok") done.insert(key);
     kept.push_back(std::move(rows[i]));
   }
   write_result_files(out, kept, columns);  // the CSV always mirrors the JSONL, even after a kill between the two
@@ -363,7 +363,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     }
     runs.push_back({key, run_command(run, exe, out), log, [&, run, log, run_dir](const ChildExit& e, double wall) {
                       std::string status = "ok", error;
-                      std::optional<JsonValue> result;
+                      std::optional<Json> result;
                       if (e.timed_out) {
                         status = "timeout";
                         error = fmt::format("stopped after the {} s limit", spec.timeout_s);

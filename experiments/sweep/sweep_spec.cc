@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "core/io/input_error.h"
+#include "variants/registry.h"
 
 namespace arbor {
 namespace {
@@ -204,12 +205,13 @@ const std::vector<std::string>& known_filters() {
   static const std::vector<std::string> names{"fastslam1", "fastslam2", "smoother"};
   return names;
 }
+// Map back ends and strategies come from the registry, so a spec is checked against what this build can run.
 const std::vector<std::string>& known_maps() {
-  static const std::vector<std::string> names{"naive", "tree", "trie"};
+  static const std::vector<std::string> names = map_backend_names();
   return names;
 }
 const std::vector<std::string>& known_assocs() {
-  static const std::vector<std::string> names{"known", "nn", "jcbb", "locality"};
+  static const std::vector<std::string> names = association_names();
   return names;
 }
 const std::vector<std::string>& known_worlds() {
@@ -218,9 +220,12 @@ const std::vector<std::string>& known_worlds() {
 }
 
 std::vector<std::string> default_metrics(bool with_smoother) {
-  std::vector<std::string> m{"ate_rmse_m",   "landmark_rmse_m",    "nees_mean",       "assoc_precision",
-                             "assoc_recall", "assoc_f1",           "landmarks",       "steps",
-                             "step_time_median_s", "step_time_p95_s", "wall_time_s", "peak_rss_bytes"};
+  // DESIGN.md §9's fields, then the engine statistics `arbor run` adds (absent ones are recorded as null).
+  std::vector<std::string> m{"ate_rmse_m",         "landmark_rmse_m", "nees_mean",      "assoc_precision",
+                             "assoc_recall",       "assoc_f1",        "landmarks",      "steps",
+                             "step_time_median_s", "step_time_p95_s", "wall_time_s",    "peak_rss_bytes",
+                             "ate_mean_rmse_m",    "true_landmarks",  "n_eff_mean",     "hypotheses",
+                             "compatibility_tests", "map_bytes_per_particle"};
   if (with_smoother) m.insert(m.end(), {"solve_time_s", "iterations", "initial_cost", "final_cost", "termination"});
   return m;
 }
@@ -279,6 +284,7 @@ SweepSpec read_sweep_spec(const std::string& path) {
 
   SweepSpec spec;
   spec.path = path;
+  spec.name = std::filesystem::path(path).stem().string();
 
   // [sweep]: name, description, metrics, jobs, timeout_s. All optional.
   bool explicit_metrics = false;

@@ -57,7 +57,7 @@ std::vector<std::string> default_metrics(bool with_smoother);
 // required field, a dataset that does not exist. Nothing is run; nothing is written.
 SweepSpec read_sweep_spec(const std::string& path);
 
-// The names the spec accepts (DESIGN.md §9), for messages and validation.
+// The names the spec accepts: DESIGN.md §9 filters and worlds, the registry's map back ends and strategies.
 const std::vector<std::string>& known_filters();
 const std::vector<std::string>& known_maps();
 const std::vector<std::string>& known_assocs();

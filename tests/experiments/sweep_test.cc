@@ -11,7 +11,6 @@
 #include <fmt/core.h>
 #include <gtest/gtest.h>
 
-#include "experiments/sweep/json_value.h"
 #include "experiments/sweep/results_log.h"
 #include "tests/experiments/sweep_test_util.h"
 
@@ -48,7 +47,7 @@ std::string tuple_of(const ResultRow& row) {
   std::string out;
   for (const char* c : {"key", "status", "dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed",
                         "filter", "map", "assoc", "particles", "seed", "threads"})
-    out += std::string(c) + "=" + (row.find(c) ? row.find(c)->encode() : "?") + ";";
+    out += std::string(c) + "=" + (row.contains(c) ? row[c].dump() : "?") + ";";
   return out;
 }
 
