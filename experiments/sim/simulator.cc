@@ -75,21 +75,24 @@ Scenario simulate(const SimulationOptions& o) {
   int target = 1;
 
   s.steps.reserve(o.steps);
+  // Step 0 stands still and scans from the known initial pose: the first landmarks are anchored to it, as the
+  // initial pose anchors the gauge. Without it the first motion's heading error rotates the whole map.
   for (int k = 0; k < o.steps; ++k) {
     RandomStream rng(o.seed, k, 0, RandomPurpose::kSimulation);
-    // Steer towards the next corner with a bounded turn rate, then move along the exact arc.
-    if ((truth.position() - corners[target]).norm() < 1.5 * o.speed_mps * o.dt_s) target = (target + 1) % 4;
-    const Vec2 to_target = corners[target] - truth.position();
-    const double heading_error = wrap_angle(std::atan2(to_target.y(), to_target.x()) - truth.theta);
-    const double omega = std::clamp(2.0 * heading_error / o.dt_s, -o.max_turn_rate_radps, o.max_turn_rate_radps);
-    const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, o.dt_s), nullptr, nullptr);
-
     ScenarioStep step;
-    step.time_s = (k + 1) * o.dt_s;
-    const Vec3 u_true = odometry_between(truth, next);
-    const Mat3 Q_u = odometry_control_covariance(u_true, o.odometry);
-    for (int i = 0; i < 3; ++i) step.control[i] = u_true[i] + std::sqrt(Q_u(i, i)) * rng.normal();
-    truth = next;
+    step.time_s = k * o.dt_s;
+    if (k > 0) {
+      // Steer towards the next corner with a bounded turn rate, then move along the exact arc.
+      if ((truth.position() - corners[target]).norm() < 1.5 * o.speed_mps * o.dt_s) target = (target + 1) % 4;
+      const Vec2 to_target = corners[target] - truth.position();
+      const double heading_error = wrap_angle(std::atan2(to_target.y(), to_target.x()) - truth.theta);
+      const double omega = std::clamp(2.0 * heading_error / o.dt_s, -o.max_turn_rate_radps, o.max_turn_rate_radps);
+      const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, o.dt_s), nullptr, nullptr);
+      const Vec3 u_true = odometry_between(truth, next);
+      const Mat3 Q_u = odometry_control_covariance(u_true, o.odometry);
+      for (int i = 0; i < 3; ++i) step.control[i] = u_true[i] + std::sqrt(Q_u(i, i)) * rng.normal();
+      truth = next;
+    }
     step.truth_pose = truth;
     step.has_scan = true;
 
