@@ -2,6 +2,8 @@
 // the spec's line and field before anything runs.
 #include "experiments/sweep/sweep_spec.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -120,6 +122,36 @@ seed = [1, 2]
   EXPECT_EQ(smoother, 2);
   EXPECT_EQ(spec.runs.size(), 2u + 2 * 2);
   EXPECT_EQ(spec.metrics, default_metrics(true));
+}
+
+TEST(SweepSpec, DatasetsResolveAgainstTheSpecFolderAndKeysDoNotDependOnIt) {
+  ScratchDir dir("spec");
+  std::filesystem::create_directories(dir / "data");
+  write_text(dir / "data/park.scn", "arbor-scenario 1\n");
+  const std::string text = R"(
+[scenarios]
+datasets = ["data/park.scn"]
+[grid]
+filter = "fastslam2"
+map = "naive"
+assoc = "known"
+particles = 10
+seed = 1
+)";
+  const SweepSpec spec = spec_from(dir, text);
+  ASSERT_EQ(spec.runs.size(), 1u);
+  EXPECT_EQ(spec.runs[0].dataset, "data/park.scn");
+  EXPECT_EQ(spec.runs[0].dataset_path, dir / "data/park.scn");
+  EXPECT_EQ(spec.runs[0].key().rfind("park-", 0), 0u) << spec.runs[0].key();
+  const auto argv = run_command(spec.runs[0], "arbor", "out");
+  EXPECT_NE(std::find(argv.begin(), argv.end(), dir / "data/park.scn"), argv.end());
+  // The same spec elsewhere (another machine, another checkout) gives the same key and hash.
+  ScratchDir other("spec_elsewhere");
+  std::filesystem::create_directories(other / "data");
+  write_text(other / "data/park.scn", "arbor-scenario 1\n");
+  const SweepSpec moved = spec_from(other, text);
+  EXPECT_EQ(moved.runs[0].key(), spec.runs[0].key());
+  EXPECT_EQ(moved.hash, spec.hash);
 }
 
 TEST(SweepSpec, UnknownBackEndNamesItsLineAndField) {
