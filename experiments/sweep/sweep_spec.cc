@@ -75,6 +75,8 @@ class SpecReader {
       const bool has_step = range->contains("step"), has_factor = range->contains("factor");
       if (has_step && has_factor) fail(line_of(node), field, "a range has either 'step' or 'factor', not both");
       if (from > to) fail(line_of(node), field, fmt::format("bad range: from = {} is greater than to = {}", from, to));
+      // Endpoints first: with both inside [lo, hi] the step arithmetic below cannot overflow.
+      if (from < lo || to > hi) fail(line_of(node), field, fmt::format("bad range: [{}, {}] goes outside [{}, {}]", from, to, lo, hi));
       if (has_factor) {
         const std::int64_t factor = integer_member(*range, field, "factor", true, 0);
         if (factor < 2) fail(line_of(node), field, fmt::format("bad range: factor must be at least 2, got {}", factor));

@@ -183,7 +183,8 @@ TEST(SweepSpec, BadRangesNameTheirLine) {
   ScratchDir dir("spec");
   for (const auto& bad : {"particles = { from = 10, to = 1 }", "particles = { from = 1, to = 10, step = 0 }",
                           "particles = { from = 1, to = 10, factor = 1 }", "particles = [0, 5]",
-                          "particles = { from = 1 }", "particles = []", "particles = [1.5]"}) {
+                          "particles = { from = 1 }", "particles = []", "particles = [1.5]",
+                          "particles = { from = -9223372036854775807, to = 9223372036854775807 }"}) {
     std::string text = kGoodSpec;
     text.replace(text.find("particles = [10, 1]"), 19, bad);
     const InputError e = error_of(dir, text);
