@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
 #ifdef ARBOR_HAVE_SMOOTHER
   arbor::cli::add_smooth_command(app, &action);
 #endif
+  arbor::cli::add_sweep_command(app, &action);
+  arbor::cli::add_merge_command(app, &action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
