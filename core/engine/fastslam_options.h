@@ -30,7 +30,7 @@ struct FastSlamOptions {
   double log_odds_hit = 1.0;
   double log_odds_miss = 0.5;
   double log_odds_max = 8.0;
-  double log_odds_prune = -1.0;
+  double log_odds_prune = 0.0;
   // Pruning is off with known association: the ids are right by construction, so evidence only matters
   // when the filter decides what exists.
   bool prune_with_known_association = false;
