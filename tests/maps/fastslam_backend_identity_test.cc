@@ -22,7 +22,7 @@ struct RunOutput {
 RunOutput run(const std::string& map, const Scenario& scenario, FilterVersion version, int threads) {
   FastSlamOptions options;
   options.version = version;
-  options.particles = 20;
+  options.particles = 10;
   options.seed = 5;
   options.threads = threads;
   options.prune_with_known_association = true;  // so that landmarks are erased too, not only set and inserted
@@ -58,11 +58,12 @@ class BackendIdentity : public ::testing::TestWithParam<FilterVersion> {};
 TEST_P(BackendIdentity, WholeRunsAreBitIdenticalAcrossMapBackends) {
   const auto field = bench::make_landmark_field(400, 3);
   bench::FieldDrive drive;
-  drive.steps = 450;  // more than one loop of the 60 m circle: landmarks are revisited
+  drive.radius_m = 35.0;
+  drive.steps = 260;  // more than one loop of the circle: landmarks are revisited
   drive.detection_probability = 0.8;
   const Scenario scenario = bench::make_field_scenario(field, drive);
   const RunOutput reference = run("naive", scenario, GetParam(), 2);
-  ASSERT_GT(reference.map.size(), 50u);
+  ASSERT_GT(reference.map.size(), 40u);
   for (const std::string& name : map_backend_names()) {
     const RunOutput other = run(name, scenario, GetParam(), name == "tree" ? 1 : 2);
     expect_identical(reference, other, name);
