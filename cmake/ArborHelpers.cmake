@@ -22,6 +22,7 @@ function(arbor_add_test name)
   endif()
   add_executable(${name} ${srcs})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main arbor_options)
+  target_compile_definitions(${name} PRIVATE ARBOR_TEST_BINARY_DIR="${PROJECT_BINARY_DIR}")
   gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_TIMEOUT 60
                        PROPERTIES ENVIRONMENT "ARBOR_BINARY_DIR=${PROJECT_BINARY_DIR}")
 endfunction()

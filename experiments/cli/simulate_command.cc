@@ -1,1 +1,70 @@
-// Filled in by the simulator commit.
+// `arbor simulate`: writes a simulated scenario (world, loop trajectory, noisy odometry and measurements,
+// ground truth) in the scenario text format.
+#include <fmt/core.h>
+
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "experiments/cli/commands.h"
+#include "experiments/sim/simulator.h"
+
+namespace arbor::cli {
+
+void add_simulate_command(CLI::App& app, CommandAction* action) {
+  auto* cmd = app.add_subcommand("simulate", "Write a simulated scenario with ground truth (deterministic from --seed)");
+  auto options = std::make_shared<SimulationOptions>();
+  auto world = std::make_shared<std::string>("uniform");
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("--world", *world, "World layout: uniform, clustered, or rooms (walls block sight)")
+      ->check(CLI::IsMember({"uniform", "clustered", "rooms"}))
+      ->capture_default_str();
+  cmd->add_option("--landmarks", options->world.landmarks, "Number of landmarks N; the world's area grows with N")
+      ->capture_default_str();
+  cmd->add_option("--density", options->world.density_per_m2,
+                  "Landmarks per square metre (keeps the number in view per scan constant as N grows)")
+      ->capture_default_str();
+  cmd->add_option("--steps", options->steps, "Number of time steps (one odometry reading and one scan each)")
+      ->capture_default_str();
+  cmd->add_option("--clutter", options->clutter_rate, "Expected spurious measurements per scan (Poisson rate)")
+      ->capture_default_str();
+  cmd->add_option("--detection", options->detection_probability, "Probability that a landmark in view is detected")
+      ->capture_default_str();
+  cmd->add_option("--range", options->sensor.max_range_m, "Sensor range [m]")->capture_default_str();
+  cmd->add_option("--fov", options->sensor.fov_rad, "Sensor field of view [rad], centred on the heading")
+      ->capture_default_str();
+  cmd->add_option("--sigma-range", options->sensor.sigma_range_m, "Range noise standard deviation [m]")
+      ->capture_default_str();
+  cmd->add_option("--sigma-bearing", options->sensor.sigma_bearing_rad, "Bearing noise standard deviation [rad]")
+      ->capture_default_str();
+  auto odometry_noise = std::make_shared<std::vector<double>>();
+  cmd->add_option("--odometry-noise", *odometry_noise,
+                  "Odometry noise alpha1 alpha2 alpha3 alpha4 (Probabilistic Robotics Table 5.6: rotation from "
+                  "rotation, rotation from translation, translation from translation, translation from rotation)")
+      ->expected(4);
+  cmd->add_flag("--signatures", options->signatures, "Report a noisy scalar signature with each measurement");
+  cmd->add_option("--seed", options->seed, "Seed of the world and of all noise")->capture_default_str();
+  cmd->add_option("--out", *out, "Scenario file to write")->required();
+  *action = nullptr;
+  cmd->callback([=] {
+    *action = [=] {
+      if (!from_string(*world, &options->world.kind)) throw InputError("", 0, "world", "unknown world " + *world);
+      options->world.seed = options->seed;
+      if (!odometry_noise->empty()) {
+        for (double a : *odometry_noise)
+          if (!(a >= 0.0)) throw InputError("", 0, "odometry-noise", "noise parameters must not be negative");
+        options->odometry.alpha1 = (*odometry_noise)[0];
+        options->odometry.alpha2 = (*odometry_noise)[1];
+        options->odometry.alpha3 = (*odometry_noise)[2];
+        options->odometry.alpha4 = (*odometry_noise)[3];
+      }
+      const Scenario scenario = simulate(*options);
+      write_scenario(scenario, *out);
+      std::size_t measurements = 0;
+      for (const auto& s : scenario.steps) measurements += s.measurements.size();
+      fmt::print("wrote {}: {} world, {} landmarks, {} steps, {} measurements\n", *out, *world,
+                 scenario.truth_landmarks.size(), scenario.steps.size(), measurements);
+      return 0;
+    };
+  });
+}
+
+}  // namespace arbor::cli

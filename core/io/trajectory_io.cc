@@ -1,0 +1,76 @@
+// TUM trajectory and map CSV reading and writing.
+#include "core/io/trajectory_io.h"
+
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "core/io/atomic_file.h"
+#include "core/io/text_reader.h"
+
+namespace arbor {
+
+std::string format_tum(const std::vector<TimedPose>& trajectory) {
+  std::string out;
+  for (const TimedPose& p : trajectory) {
+    // A rotation by theta about z: q = (0, 0, sin(theta/2), cos(theta/2)).
+    fmt::format_to(std::back_inserter(out), "{} {} {} 0 0 0 {} {}\n", p.time_s, p.pose.x, p.pose.y,
+                   std::sin(0.5 * p.pose.theta), std::cos(0.5 * p.pose.theta));
+  }
+  return out;
+}
+
+void write_tum(const std::string& path, const std::vector<TimedPose>& trajectory) {
+  write_file_atomically(path, format_tum(trajectory));
+}
+
+std::vector<TimedPose> read_tum(const std::string& path) {
+  TextReader in(path);
+  std::vector<TimedPose> out;
+  while (in.next()) {
+    in.expect_fields(8, 8, "TUM pose");
+    TimedPose p;
+    p.time_s = in.number(0, "t");
+    p.pose.x = in.number(1, "x");
+    p.pose.y = in.number(2, "y");
+    const double qz = in.number(6, "qz"), qw = in.number(7, "qw");
+    p.pose.theta = wrap_angle(2.0 * std::atan2(qz, qw));
+    if (!out.empty() && p.time_s < out.back().time_s) in.fail("t", "time goes backwards");
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::string format_map_csv(const std::vector<Landmark>& map) {
+  std::string out = "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n";
+  for (const Landmark& lm : map) {
+    fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{}\n", lm.id, lm.mean.x(), lm.mean.y(),
+                   lm.cov(0, 0), lm.cov(0, 1), lm.cov(1, 1), lm.log_odds,
+                   std::isnan(lm.signature) ? std::string() : fmt::format("{}", lm.signature), lm.truth_label);
+  }
+  return out;
+}
+
+void write_map_csv(const std::string& path, const std::vector<Landmark>& map) {
+  write_file_atomically(path, format_map_csv(map));
+}
+
+std::vector<Landmark> read_map_csv(const std::string& path) {
+  TextReader in(path, ",");
+  std::vector<Landmark> out;
+  if (!in.next() || in.field(0) != "id") throw InputError(path, in.line_number(), "header", "expected the map.csv header");
+  while (in.next()) {
+    in.expect_fields(9, 9, "map.csv");
+    Landmark lm;
+    lm.id = static_cast<LandmarkId>(in.integer(0, "id"));
+    lm.mean = {in.number(1, "x"), in.number(2, "y")};
+    lm.cov << in.number(3, "cov_xx"), in.number(4, "cov_xy"), in.number(4, "cov_xy"), in.number(5, "cov_yy");
+    lm.log_odds = static_cast<float>(in.number(6, "log_odds"));
+    if (!in.field(7).empty()) lm.signature = static_cast<float>(in.number(7, "signature"));
+    lm.truth_label = static_cast<std::int32_t>(in.integer(8, "truth_label"));
+    out.push_back(lm);
+  }
+  return out;
+}
+
+}  // namespace arbor

@@ -1,0 +1,26 @@
+// Trajectories in the TUM format (`t x y z qx qy qz qw`, one pose per line), readable by evo and others,
+// and maps as CSV. Numbers use shortest round-trip formatting, so equal estimates give equal bytes.
+#ifndef ARBOR_CORE_IO_TRAJECTORY_IO_H_
+#define ARBOR_CORE_IO_TRAJECTORY_IO_H_
+
+#include <string>
+#include <vector>
+
+#include "core/engine/landmark.h"
+#include "core/engine/pose_history.h"
+
+namespace arbor {
+
+std::string format_tum(const std::vector<TimedPose>& trajectory);
+void write_tum(const std::string& path, const std::vector<TimedPose>& trajectory);
+// Throws InputError naming file, line and field.
+std::vector<TimedPose> read_tum(const std::string& path);
+
+// Header: id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label
+std::string format_map_csv(const std::vector<Landmark>& map);
+void write_map_csv(const std::string& path, const std::vector<Landmark>& map);
+std::vector<Landmark> read_map_csv(const std::string& path);
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_IO_TRAJECTORY_IO_H_

@@ -1,0 +1,25 @@
+// Quantiles and peak RSS.
+#include "core/metrics/run_statistics.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+
+namespace arbor {
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double position = q * (values.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(position);
+  const std::size_t hi = std::min(lo + 1, values.size() - 1);
+  return values[lo] + (position - lo) * (values[hi] - values[lo]);
+}
+
+std::int64_t peak_rss_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::int64_t>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+}  // namespace arbor

@@ -1,0 +1,50 @@
+// Trajectory and map accuracy (DESIGN.md §7): ATE RMSE with optional SE(2) alignment, landmark RMSE by
+// ground-truth association, and pose NEES.
+#ifndef ARBOR_CORE_METRICS_TRAJECTORY_METRICS_H_
+#define ARBOR_CORE_METRICS_TRAJECTORY_METRICS_H_
+
+#include <optional>
+#include <vector>
+
+#include "core/engine/landmark.h"
+#include "core/engine/pose_history.h"
+#include "core/io/scenario.h"
+
+namespace arbor {
+
+// Linear interpolation of a time-ordered trajectory at time t (heading along the shorter arc);
+// nullopt outside its time span.
+std::optional<Pose2> interpolate_pose(const std::vector<TimedPose>& trajectory, double t);
+
+// The rigid motion (rotation, translation) minimising sum |R a_i + t - b_i|^2: the closed-form 2-D
+// Procrustes solution (Umeyama 1991 without scale). Returned as the pose world_T_aligned.
+Pose2 align_se2(const std::vector<Vec2>& a, const std::vector<Vec2>& b);
+
+struct AteResult {
+  double rmse_m = 0.0;
+  int matched = 0;
+  Pose2 alignment;  // identity unless aligned
+};
+
+// Position RMSE of the estimate against truth samples at the truth's times (estimate interpolated).
+// With align = true, the estimate is first moved by the SE(2) alignment that fits it best to the truth
+// (for real data, whose frame is arbitrary). nullopt when no truth time falls inside the estimate.
+std::optional<AteResult> absolute_trajectory_error(const std::vector<TimedPose>& estimate,
+                                                   const std::vector<TimedPosition>& truth, bool align);
+
+// Truth positions of the scenario's steps that carry a truth pose.
+std::vector<TimedPosition> truth_positions(const Scenario& scenario);
+
+// RMSE of every estimated landmark created from a real landmark against that landmark's true position.
+std::optional<double> landmark_rmse(const std::vector<Landmark>& map, const std::vector<TruthLandmark>& truth,
+                                    const Pose2& alignment = Pose2{});
+
+// Normalised estimation error squared e^T P^-1 e of a pose estimate (3 dof).
+double pose_nees(const Pose2& estimate, const Mat3& covariance, const Pose2& truth);
+
+// Dead reckoning: the scenario's controls applied without noise from the initial pose, at every step.
+std::vector<TimedPose> dead_reckoning(const Scenario& scenario);
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_METRICS_TRAJECTORY_METRICS_H_

@@ -1,0 +1,73 @@
+// `arbor run`: one FastSLAM run over a scenario; writes DIR/result.json, trajectory.tum, map.csv.
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "experiments/cli/commands.h"
+#include "experiments/run/fastslam_run.h"
+#include "variants/registry.h"
+
+namespace arbor::cli {
+
+void add_run_command(CLI::App& app, CommandAction* action) {
+  auto* cmd = app.add_subcommand("run", "Run FastSLAM on a scenario and write its result files");
+  auto config = std::make_shared<RunConfig>();
+  auto filter = std::make_shared<std::string>("fastslam2");
+  auto quiet = std::make_shared<bool>(false);
+  cmd->add_option("--scenario", config->scenario_path, "Scenario file (from `arbor simulate` or `arbor convert`)")
+      ->required();
+  cmd->add_option("--filter", *filter, "fastslam1 (sample the motion model) or fastslam2 (measurement-informed proposal)")
+      ->check(CLI::IsMember({"fastslam1", "fastslam2"}))
+      ->capture_default_str();
+  cmd->add_option("--map", config->map, fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", ")))
+      ->capture_default_str();
+  cmd->add_option("--assoc", config->assoc,
+                  fmt::format("Data association: {} (known = the scenario's ground-truth ids)",
+                              fmt::join(association_names(), ", ")))
+      ->capture_default_str();
+  cmd->add_option("--particles", config->options.particles, "Number of particles M")->capture_default_str();
+  cmd->add_option("--seed", config->options.seed, "Seed of every random draw of the filter")->capture_default_str();
+  cmd->add_option("--threads", config->options.threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  cmd->add_option("--resample-threshold", config->options.resample_threshold,
+                  "Resample when N_eff < threshold * particles")
+      ->capture_default_str();
+  cmd->add_option("--chi2", config->options.association.gate_probability,
+                  "Chi-square gate probability of the association tests")
+      ->capture_default_str();
+  cmd->add_option("--new-landmark-gate", config->options.association.new_landmark_probability,
+                  "A measurement outside this chi-square gate of every landmark starts a new one")
+      ->capture_default_str();
+  cmd->add_option("--prune", config->options.log_odds_prune, "Drop landmarks whose existence log-odds fall below this")
+      ->capture_default_str();
+  cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv, steps.csv)")
+      ->required();
+  cmd->add_flag("--quiet", *quiet, "No progress line");
+  cmd->callback([=] {
+    *action = [=] {
+      if (!from_string(*filter, &config->options.version)) throw InputError("", 0, "filter", "unknown filter " + *filter);
+      config->progress = !*quiet;
+      const Scenario scenario = read_scenario(config->scenario_path);
+      const RunOutput out = run_fastslam(scenario, *config);
+      const auto& r = out.result;
+      const auto show = [](const nlohmann::json& v) { return v.is_null() ? std::string("n/a") : fmt::format("{:.4g}", v.get<double>()); };
+      fmt::print("{} {} map={} assoc={} particles={} seed={}\n", config->scenario_path, *filter, config->map,
+                 config->assoc, config->options.particles, config->options.seed);
+      fmt::print("  ATE RMSE {} m (weighted mean {} m, dead reckoning {} m{})\n", show(r["ate_rmse_m"]),
+                 show(r["ate_mean_rmse_m"]), show(r["dead_reckoning_ate_m"]),
+                 r["ate_aligned"].get<bool>() ? ", SE(2)-aligned to GPS" : "");
+      fmt::print("  landmark RMSE {} m, landmarks {} (true {}), NEES mean {}\n", show(r["landmark_rmse_m"]),
+                 r["landmarks"].get<std::size_t>(), r["true_landmarks"].get<std::size_t>(), show(r["nees_mean"]));
+      fmt::print("  association precision {} recall {} F1 {}\n", show(r["assoc_precision"]), show(r["assoc_recall"]),
+                 show(r["assoc_f1"]));
+      fmt::print("  step time median {:.3g} ms, p95 {:.3g} ms, wall {:.3g} s, peak RSS {:.1f} MB\n",
+                 1e3 * r["step_time_median_s"].get<double>(), 1e3 * r["step_time_p95_s"].get<double>(),
+                 r["wall_time_s"].get<double>(), r["peak_rss_bytes"].get<double>() / 1e6);
+      fmt::print("  wrote {}/result.json, trajectory.tum, map.csv\n", config->out_dir);
+      return 0;
+    };
+  });
+}
+
+}  // namespace arbor::cli

@@ -1,0 +1,143 @@
+// The FastSLAM run pipeline: filter over the scenario, metrics, result files.
+#include "experiments/run/fastslam_run.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include <fmt/core.h>
+#include <tbb/info.h>
+
+#include "core/io/atomic_file.h"
+#include "core/io/build_info.h"
+#include "core/io/trajectory_io.h"
+#include "core/metrics/run_statistics.h"
+#include "core/metrics/trajectory_metrics.h"
+#include "experiments/run/progress.h"
+#include "variants/registry.h"
+
+namespace arbor {
+namespace {
+
+using Json = nlohmann::json;
+
+Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+
+}  // namespace
+
+Json provenance() {
+  return {{"commit", git_commit()}, {"host", host_name()}, {"compiler", compiler()}, {"build", build_type()}};
+}
+
+RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
+  const int threads = config.options.threads > 0 ? config.options.threads : tbb::info::default_concurrency();
+
+  RunOutput out;
+  std::vector<double> step_times;
+  step_times.reserve(scenario.steps.size());
+  std::vector<TimedPose> mean_trajectory{{scenario.start_time_s, filter->estimate().mean}};
+  std::string steps_csv = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees\n";
+  double n_eff_sum = 0.0;
+  std::int64_t resamples = 0, hypotheses = 0, tests = 0;
+  Progress progress(fmt::format("run {}/{}/{}", to_string(config.options.version), config.map, config.assoc),
+                    static_cast<std::int64_t>(scenario.steps.size()), config.progress);
+
+  for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
+    const ScenarioStep& step = scenario.steps[k];
+    const auto t0 = std::chrono::steady_clock::now();
+    filter->step(step);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    step_times.push_back(dt);
+    const StepStats& stats = filter->last_step_stats();
+    n_eff_sum += stats.n_eff;
+    resamples += stats.resampled;
+    hypotheses += stats.hypotheses;
+    tests += stats.tests;
+    std::string nees_text;
+    if (step.has_scan || step.truth_pose) {
+      const PoseEstimate estimate = filter->estimate();
+      mean_trajectory.push_back({step.time_s, estimate.mean});
+      if (step.truth_pose) {
+        out.nees.push_back(pose_nees(estimate.mean, estimate.covariance, *step.truth_pose));
+        nees_text = fmt::format("{}", out.nees.back());
+      }
+    }
+    fmt::format_to(std::back_inserter(steps_csv), "{},{},{:.9f},{},{},{},{},{}\n", k, step.time_s, dt, stats.n_eff,
+                   stats.resampled ? 1 : 0, stats.best_landmarks, stats.hypotheses, nees_text);
+    progress.update(static_cast<std::int64_t>(k + 1), fmt::format("{} landmarks", stats.best_landmarks));
+  }
+  progress.finish();
+
+  const std::vector<TimedPose> best = filter->best_trajectory();
+  const std::vector<Landmark> map = filter->best_map();
+  const AssociationCounts counts = filter->best_association_counts();
+  const MapMemoryStats memory = filter->memory_stats();
+
+  // Simulation and UTIAS carry truth poses in the filter's frame; GPS tracks (Victoria Park) need alignment.
+  std::vector<TimedPosition> truth = truth_positions(scenario);
+  const bool align = truth.empty() && !scenario.truth_track.empty();
+  if (align) truth = scenario.truth_track;
+  const auto ate = absolute_trajectory_error(best, truth, align);
+  const auto ate_mean = absolute_trajectory_error(mean_trajectory, truth, align);
+  const auto ate_dr = absolute_trajectory_error(dead_reckoning(scenario), truth, align);
+  const auto lm_rmse = landmark_rmse(map, scenario.truth_landmarks, ate ? ate->alignment : Pose2{});
+  double nees_mean = 0.0;
+  for (double v : out.nees) nees_mean += v / out.nees.size();
+  const std::size_t particles = static_cast<std::size_t>(config.options.particles);
+
+  Json& r = out.result;
+  r["config"] = {{"scenario", config.scenario_path},
+                 {"filter", std::string(to_string(config.options.version))},
+                 {"map", config.map},
+                 {"assoc", config.assoc},
+                 {"particles", config.options.particles},
+                 {"seed", config.options.seed},
+                 {"threads", threads},
+                 {"resample_threshold", config.options.resample_threshold},
+                 {"gate_probability", config.options.association.gate_probability},
+                 {"new_landmark_probability", config.options.association.new_landmark_probability},
+                 {"log_odds_prune", config.options.log_odds_prune}};
+  r["config"].update(provenance());
+  r["scenario"] = scenario.metadata;
+  r["ate_rmse_m"] = ate ? Json(ate->rmse_m) : Json(nullptr);
+  r["ate_mean_rmse_m"] = ate_mean ? Json(ate_mean->rmse_m) : Json(nullptr);
+  r["ate_aligned"] = align;
+  r["dead_reckoning_ate_m"] = ate_dr ? Json(ate_dr->rmse_m) : Json(nullptr);
+  r["landmark_rmse_m"] = optional_number(lm_rmse);
+  r["nees_mean"] = out.nees.empty() ? Json(nullptr) : Json(nees_mean);
+  r["assoc_precision"] = optional_number(counts.precision());
+  r["assoc_recall"] = optional_number(counts.recall());
+  r["assoc_f1"] = optional_number(counts.f1());
+  r["assoc_counts"] = {{"true_matches", counts.true_matches}, {"false_matches", counts.false_matches},
+                       {"missed_matches", counts.missed_matches}, {"false_new", counts.false_new},
+                       {"scored", counts.scored}};
+  r["landmarks"] = map.size();
+  r["true_landmarks"] = scenario.truth_landmarks.size();
+  r["steps"] = scenario.steps.size();
+  r["scenario_duration_s"] = scenario.steps.empty() ? 0.0 : scenario.steps.back().time_s - scenario.start_time_s;
+  r["step_time_median_s"] = quantile(step_times, 0.5);
+  r["step_time_p95_s"] = quantile(step_times, 0.95);
+  r["n_eff_mean"] = scenario.steps.empty() ? 0.0 : n_eff_sum / scenario.steps.size();
+  r["resamples"] = resamples;
+  r["hypotheses"] = hypotheses;
+  r["compatibility_tests"] = tests;
+  r["map_bytes_per_particle"] = memory.bytes / particles;
+  r["map_shared_fraction"] = memory.bytes ? double(memory.shared_bytes) / memory.bytes : 0.0;
+  r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  r["peak_rss_bytes"] = peak_rss_bytes();
+
+  if (!config.out_dir.empty()) {
+    std::filesystem::create_directories(config.out_dir);
+    const std::string dir = config.out_dir + "/";
+    write_tum(dir + "trajectory.tum", best);
+    write_tum(dir + "trajectory_mean.tum", mean_trajectory);
+    write_map_csv(dir + "map.csv", map);
+    write_file_atomically(dir + "steps.csv", steps_csv);
+    // result.json last: its presence means the run finished and every other file is complete.
+    write_file_atomically(dir + "result.json", r.dump(2) + "\n");
+  }
+  return out;
+}
+
+}  // namespace arbor

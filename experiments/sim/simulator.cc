@@ -1,0 +1,130 @@
+// Loop trajectory, odometry and range-bearing measurement simulation.
+#include "experiments/sim/simulator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <fmt/core.h>
+
+#include "core/engine/rng.h"
+#include "core/io/input_error.h"
+#include "core/models/range_bearing_model.h"
+
+namespace arbor {
+namespace {
+
+void require(bool ok, const char* field, const std::string& message) {
+  if (!ok) throw InputError("", 0, field, message);
+}
+
+// Knuth's multiplication method; rates here are small (a few per scan).
+int sample_poisson(double rate, RandomStream& rng) {
+  if (rate <= 0.0) return 0;
+  const double limit = std::exp(-rate);
+  int k = 0;
+  for (double product = rng.uniform(); product > limit; product *= rng.uniform()) ++k;
+  return k;
+}
+
+std::array<Vec2, 4> loop_corners(const World& world, const SimulationOptions& o) {
+  const double lo = o.loop_inset_fraction * world.side_m, hi = (1.0 - o.loop_inset_fraction) * world.side_m;
+  std::array<Vec2, 4> corners{Vec2(lo, lo), Vec2(hi, lo), Vec2(hi, hi), Vec2(lo, hi)};
+  if (world.kind == WorldKind::kRooms) {  // through room centres, so every wall is crossed at its doorway
+    const double s = world.room_size_m;
+    for (Vec2& c : corners) c = ((c / s).array().floor() * s + 0.5 * s).matrix();
+  }
+  return corners;
+}
+
+}  // namespace
+
+Scenario simulate(const SimulationOptions& o) {
+  require(o.world.landmarks >= 1, "landmarks", "need at least one landmark");
+  require(o.world.density_per_m2 > 0.0, "density", "density must be positive");
+  require(o.steps >= 1, "steps", "need at least one step");
+  require(o.speed_mps > 0.0 && o.dt_s > 0.0, "speed", "speed and dt must be positive");
+  require(o.clutter_rate >= 0.0, "clutter", fmt::format("clutter rate must not be negative (got {})", o.clutter_rate));
+  require(o.detection_probability > 0.0 && o.detection_probability <= 1.0, "detection",
+          "detection probability must lie in (0, 1]");
+  require(o.loop_inset_fraction > 0.0 && o.loop_inset_fraction < 0.5, "inset", "loop inset must lie in (0, 0.5)");
+
+  const World world = make_world(o.world);
+  Scenario s;
+  s.metadata = {{"source", "simulation"},
+                {"world", std::string(to_string(o.world.kind))},
+                {"landmarks", fmt::format("{}", o.world.landmarks)},
+                {"density_per_m2", fmt::format("{}", o.world.density_per_m2)},
+                {"clutter_rate", fmt::format("{}", o.clutter_rate)},
+                {"detection_probability", fmt::format("{}", o.detection_probability)},
+                {"steps", fmt::format("{}", o.steps)},
+                {"seed", fmt::format("{}", o.seed)}};
+  s.motion.kind = MotionModelKind::kOdometry;
+  s.motion.odometry = o.odometry;
+  s.sensor = o.sensor;
+  if (o.signatures && std::isnan(s.sensor.sigma_signature)) s.sensor.sigma_signature = 0.05;
+  if (!o.signatures) s.sensor.sigma_signature = std::numeric_limits<double>::quiet_NaN();
+  s.truth_landmarks = world.landmarks;
+
+  const auto corners = loop_corners(world, o);
+  Pose2 truth{corners[0].x(), corners[0].y(),
+              std::atan2(corners[1].y() - corners[0].y(), corners[1].x() - corners[0].x())};
+  s.initial_pose = truth;
+  s.start_time_s = 0.0;
+  const LandmarkGrid grid(world, std::max(5.0, s.sensor.max_range_m));
+  int target = 1;
+
+  s.steps.reserve(o.steps);
+  // Step 0 stands still and scans from the known initial pose: the first landmarks are anchored to it, as the
+  // initial pose anchors the gauge. Without it the first motion's heading error rotates the whole map.
+  for (int k = 0; k < o.steps; ++k) {
+    RandomStream rng(o.seed, k, 0, RandomPurpose::kSimulation);
+    ScenarioStep step;
+    step.time_s = k * o.dt_s;
+    if (k > 0) {
+      // Steer towards the next corner with a bounded turn rate, then move along the exact arc.
+      if ((truth.position() - corners[target]).norm() < 1.5 * o.speed_mps * o.dt_s) target = (target + 1) % 4;
+      const Vec2 to_target = corners[target] - truth.position();
+      const double heading_error = wrap_angle(std::atan2(to_target.y(), to_target.x()) - truth.theta);
+      const double omega = std::clamp(2.0 * heading_error / o.dt_s, -o.max_turn_rate_radps, o.max_turn_rate_radps);
+      const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, o.dt_s), nullptr, nullptr);
+      const Vec3 u_true = odometry_between(truth, next);
+      const Mat3 Q_u = odometry_control_covariance(u_true, o.odometry);
+      for (int i = 0; i < 3; ++i) step.control[i] = u_true[i] + std::sqrt(Q_u(i, i)) * rng.normal();
+      truth = next;
+    }
+    step.truth_pose = truth;
+    step.has_scan = true;
+
+    grid.visit_within(truth.position(), s.sensor.max_range_m, [&](int index) {
+      const Vec2& m = world.landmarks[index].position;
+      const Vec2 z = range_bearing_predict(truth, m);
+      if (!s.sensor.in_view(z) || !world.line_of_sight(truth.position(), m)) return;
+      if (rng.uniform() > o.detection_probability) return;
+      Measurement meas;
+      meas.range_m = std::max(0.0, z.x() + s.sensor.sigma_range_m * rng.normal());
+      meas.bearing_rad = wrap_angle(z.y() + s.sensor.sigma_bearing_rad * rng.normal());
+      if (o.signatures)
+        meas.signature = static_cast<float>(world.signatures[index] + s.sensor.sigma_signature * rng.normal());
+      meas.truth_id = index;
+      step.measurements.push_back(meas);
+    });
+    const int clutter = sample_poisson(o.clutter_rate, rng);
+    for (int c = 0; c < clutter; ++c) {
+      Measurement meas;
+      meas.range_m = s.sensor.min_range_m + (s.sensor.max_range_m - s.sensor.min_range_m) * rng.uniform();
+      meas.bearing_rad = (rng.uniform() - 0.5) * s.sensor.fov_rad;
+      if (o.signatures)
+        meas.signature = static_cast<float>(o.world.signature_min + (o.world.signature_max - o.world.signature_min) * rng.uniform());
+      meas.truth_id = kTruthClutter;
+      step.measurements.push_back(meas);
+    }
+    // A sensor reports in bearing order; the order must not give away which measurement is which.
+    std::stable_sort(step.measurements.begin(), step.measurements.end(),
+                     [](const Measurement& a, const Measurement& b) { return a.bearing_rad < b.bearing_rad; });
+    s.steps.push_back(std::move(step));
+  }
+  return s;
+}
+
+}  // namespace arbor

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The README's second command (and all that CI runs): installs what is missing, builds, runs every test in a
+# Release build, then builds and runs them again under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install_dependencies.sh
+start=$(date +%s)
+scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
+(cd build && ctest -j "$(nproc)" --output-on-failure --timeout 600)
+echo "arbor: Release tests passed in $(( $(date +%s) - start )) s"
+scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DARBOR_SANITIZE=address -DARBOR_BUILD_BENCH=OFF
+(cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+   ctest -j "$(nproc)" --output-on-failure --timeout 1200)
+echo "arbor: all tests passed (Release and ASan+UBSan) in $(( $(date +%s) - start )) s"

@@ -1,0 +1,111 @@
+// The engine's building blocks: counter-based streams, resampling, the persistent pose history, chi-square.
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "core/engine/pose_history.h"
+#include "core/engine/resampling.h"
+#include "core/engine/rng.h"
+#include "core/engine/landmark.h"
+#include "core/math/chi_square.h"
+
+namespace arbor {
+namespace {
+
+TEST(RandomStream, SameKeySameNumbersDifferentKeyDifferentNumbers) {
+  RandomStream a(7, 3, 11, RandomPurpose::kMotion), b(7, 3, 11, RandomPurpose::kMotion);
+  RandomStream c(7, 3, 12, RandomPurpose::kMotion), d(7, 3, 11, RandomPurpose::kProposal);
+  for (int i = 0; i < 100; ++i) {
+    const double x = a.normal();
+    EXPECT_EQ(x, b.normal());
+    EXPECT_NE(x, c.normal());
+    EXPECT_NE(x, d.normal());
+  }
+}
+
+TEST(RandomStream, NormalHasUnitVarianceAndUniformStaysInsideTheOpenInterval) {
+  RandomStream r(1, 2, 3, RandomPurpose::kSimulation);
+  double sum = 0, sum_sq = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double x = r.normal();
+    sum += x;
+    sum_sq += x * x;
+    const double u = r.uniform();
+    ASSERT_GT(u, 0.0);
+    ASSERT_LT(u, 1.0);
+  }
+  EXPECT_NEAR(sum / n, 0.0, 0.01);
+  EXPECT_NEAR(sum_sq / n, 1.0, 0.01);
+}
+
+TEST(Resampling, NormalisesInLogSpaceAndComputesNeff) {
+  std::vector<double> w;
+  const double n_eff = normalize_log_weights({-1000.0, -1000.0, -1000.0, -1000.0}, &w);
+  EXPECT_NEAR(n_eff, 4.0, 1e-12);
+  EXPECT_NEAR(std::accumulate(w.begin(), w.end(), 0.0), 1.0, 1e-12);
+  EXPECT_NEAR(normalize_log_weights({0.0, -800.0}, &w), 1.0, 1e-12);
+}
+
+TEST(Resampling, SystematicCopiesEachParticleFloorOrCeilOfMTimesItsWeight) {
+  const std::vector<double> w{0.5, 0.25, 0.125, 0.125};
+  for (double u : {0.01, 0.3, 0.77, 0.999}) {
+    const auto parents = systematic_resample(w, u);
+    std::vector<int> copies(4, 0);
+    for (int p : parents) ++copies[p];
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_GE(copies[i], static_cast<int>(std::floor(4 * w[i]))) << "u=" << u;
+      EXPECT_LE(copies[i], static_cast<int>(std::ceil(4 * w[i]))) << "u=" << u;
+    }
+    EXPECT_TRUE(std::is_sorted(parents.begin(), parents.end()));
+  }
+}
+
+TEST(PoseHistory, CopiesShareTheirPastAndTheLastOneFreesIt) {
+  const auto before = PoseHistory::live_nodes();
+  {
+    PoseHistory a;
+    for (int i = 0; i < 10; ++i) a.push(i, {double(i), 0, 0});
+    PoseHistory b = a;
+    b.push(10, {10, 0, 0});
+    a.push(10, {-10, 0, 0});
+    EXPECT_EQ(PoseHistory::live_nodes() - before, 12);
+    EXPECT_EQ(a.to_vector().back().pose.x, -10);
+    EXPECT_EQ(b.to_vector().back().pose.x, 10);
+    EXPECT_EQ(a.to_vector().size(), 11u);
+  }
+  EXPECT_EQ(PoseHistory::live_nodes(), before);
+}
+
+TEST(PoseHistory, AVeryLongHistoryIsFreedWithoutRecursion) {
+  const auto before = PoseHistory::live_nodes();
+  {
+    PoseHistory h;
+    for (int i = 0; i < 2'000'000; ++i) h.push(i, {});
+  }
+  EXPECT_EQ(PoseHistory::live_nodes(), before);
+}
+
+TEST(ChiSquare, QuantilesMatchTables) {
+  EXPECT_NEAR(chi_square_quantile(0.95, 2), 5.991464547, 1e-8);
+  EXPECT_NEAR(chi_square_quantile(0.99, 2), 9.210340372, 1e-8);
+  EXPECT_NEAR(chi_square_quantile(0.95, 3), 7.814727903, 1e-8);
+  EXPECT_NEAR(chi_square_quantile(0.975, 90), 118.1358, 1e-3);
+  EXPECT_NEAR(chi_square_quantile(0.025, 90), 65.6466, 1e-3);
+  const ChiSquareTable table(0.99, 40);
+  EXPECT_DOUBLE_EQ(table(2), chi_square_quantile(0.99, 2));
+  EXPECT_NEAR(table(60), chi_square_quantile(0.99, 60), 1e-12);
+}
+
+TEST(LocalitySet, StaysSortedUniqueAndKeepsTheLowestIdsWhenFull) {
+  LocalitySet s;
+  for (LandmarkId id : {9, 3, 7, 3, 1, 12, 5, 8, 2}) s.add(id);
+  ASSERT_EQ(s.size(), LocalitySet::kCapacity);
+  EXPECT_EQ(std::vector<LandmarkId>(s.begin(), s.end()), (std::vector<LandmarkId>{1, 2, 3, 5, 7, 8}));
+  s.remove(3);
+  EXPECT_FALSE(s.contains(3));
+  EXPECT_TRUE(s.contains(8));
+}
+
+}  // namespace
+}  // namespace arbor

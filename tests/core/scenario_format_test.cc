@@ -1,0 +1,138 @@
+// The scenario format: exact round trip, and malformed files rejected with file, line and field.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+
+namespace arbor {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("arbor_scenario_test_" + name)).string();
+}
+
+Scenario small_scenario() {
+  Scenario s;
+  s.metadata["source"] = "test";
+  s.motion.kind = MotionModelKind::kVelocity;
+  s.sensor.sigma_signature = 0.05;
+  s.initial_pose = {1.0 / 3.0, -2.0, 0.1};
+  s.initial_sigma = {0.1, 0.2, 0.01};
+  s.truth_landmarks = {{0, {1.5, 2.5}}, {7, {-3.25, 1e-9}}};
+  s.truth_track = {{0.5, {1, 2}}};
+  for (int k = 0; k < 3; ++k) {
+    ScenarioStep step;
+    step.time_s = 0.1 * (k + 1);
+    step.control = {1.0 / 7.0, 0.2, 0.1};
+    step.truth_pose = Pose2{k * 0.1, 0.0, -kPi + 0.001};
+    step.has_scan = k != 1;
+    if (k == 2) {
+      Measurement m;
+      m.range_m = 4.2;
+      m.bearing_rad = -3.0;
+      m.signature = 0.25f;
+      m.truth_id = 7;
+      step.measurements.push_back(m);
+      m.truth_id = kTruthClutter;
+      m.signature = std::numeric_limits<float>::quiet_NaN();
+      step.measurements.push_back(m);
+      m.truth_id = kTruthUnknown;
+      step.measurements.push_back(m);
+    }
+    s.steps.push_back(step);
+  }
+  return s;
+}
+
+TEST(ScenarioFormat, RoundTripIsExact) {
+  const Scenario s = small_scenario();
+  const std::string path = temp_path("roundtrip.scn");
+  write_scenario(s, path);
+  const Scenario r = read_scenario(path);
+  EXPECT_EQ(r.metadata, s.metadata);
+  EXPECT_EQ(r.motion.kind, s.motion.kind);
+  EXPECT_EQ(r.sensor.sigma_signature, s.sensor.sigma_signature);
+  EXPECT_EQ(r.initial_pose.x, s.initial_pose.x);
+  ASSERT_EQ(r.steps.size(), s.steps.size());
+  for (std::size_t k = 0; k < s.steps.size(); ++k) {
+    EXPECT_EQ(r.steps[k].time_s, s.steps[k].time_s);
+    EXPECT_EQ(r.steps[k].control, s.steps[k].control);
+    EXPECT_EQ(r.steps[k].truth_pose->theta, s.steps[k].truth_pose->theta);
+    EXPECT_EQ(r.steps[k].has_scan, s.steps[k].has_scan);
+    ASSERT_EQ(r.steps[k].measurements.size(), s.steps[k].measurements.size());
+    for (std::size_t i = 0; i < s.steps[k].measurements.size(); ++i) {
+      EXPECT_EQ(r.steps[k].measurements[i].range_m, s.steps[k].measurements[i].range_m);
+      EXPECT_EQ(r.steps[k].measurements[i].truth_id, s.steps[k].measurements[i].truth_id);
+    }
+  }
+  EXPECT_EQ(r.truth_landmarks[1].position, s.truth_landmarks[1].position);
+  EXPECT_EQ(r.truth_track.size(), 1u);
+}
+
+// Writes a valid file, applies an edit to one line, and checks the error names that line and field.
+struct Malformed {
+  std::string name;
+  std::string find;     // text of the line to replace ("" = append)
+  std::string replace;  // its replacement
+  int expect_line;      // 0: the error may name any line
+  std::string expect_field;
+};
+
+class MalformedScenario : public ::testing::TestWithParam<Malformed> {};
+
+TEST_P(MalformedScenario, ErrorNamesFileLineAndField) {
+  const Malformed c = GetParam();
+  const std::string good = temp_path("good.scn");
+  write_scenario(small_scenario(), good);
+  std::ifstream in(good);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  int target = -1;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].rfind(c.find, 0) == 0) {
+      target = static_cast<int>(i);
+      break;
+    }
+  ASSERT_GE(target, 0) << "no line starts with " << c.find;
+  if (c.replace == "<truncate>") lines.resize(target + 1), lines.back() = lines.back().substr(0, lines.back().size() / 2);
+  else if (c.replace == "<cut>") lines.resize(target);
+  else lines[target] = c.replace;
+  const std::string bad = temp_path(c.name + ".scn");
+  {
+    std::ofstream out(bad);
+    for (const auto& l : lines) out << l << "\n";
+  }
+  try {
+    read_scenario(bad);
+    FAIL() << "accepted a malformed scenario: " << c.name;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), bad);
+    if (c.expect_line != 0) EXPECT_EQ(e.line(), c.expect_line == -1 ? target + 1 : c.expect_line) << e.what();
+    EXPECT_EQ(e.field(), c.expect_field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(bad), std::string::npos);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, MalformedScenario,
+    ::testing::Values(Malformed{"truncated_line", "step 0.2", "<truncate>", -1, "#4"},
+                      Malformed{"non_numeric", "step 0.2", "step 0.2 0.5 abc 0.1", -1, "u2"},
+                      Malformed{"nan", "truth 0.1", "truth nan 0 0", -1, "x"},
+                      Malformed{"negative_range", "z 4.2 -3 0.25 7", "z -4.2 -3 0.25 7", -1, "range"},
+                      Malformed{"unknown_type", "step 0.2", "stop 0.2 1 1 1", -1, "type"},
+                      Malformed{"time_backwards", "step 0.3", "step 0.05 1 0.2 0.1", -1, "time"},
+                      Malformed{"missing_measurement", "z 4.2 -3 - clutter", "<cut>", 0, "z"},
+                      Malformed{"missing_end", "end", "<cut>", 0, "end"},
+                      Malformed{"bad_truth_id", "z 4.2 -3 0.25 7", "z 4.2 -3 0.25 seven", -1, "truth"},
+                      Malformed{"wrong_header", "arbor-scenario", "arbor-scenery 1", 1, "header"}),
+    [](const auto& info) { return info.param.name; });
+
+TEST(ScenarioFormat, MissingFileIsAnInputError) {
+  EXPECT_THROW(read_scenario("/nonexistent/dir/x.scn"), InputError);
+}
+
+}  // namespace
+}  // namespace arbor

@@ -1,0 +1,53 @@
+// The command-line contract: exit status 0 / 2 / 1 and error messages that name file, line and field.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_support.h"
+
+namespace arbor {
+namespace {
+
+using testing::run_command;
+
+TEST(Cli, SimulateThenRunSucceedsAndWritesTheFiles) {
+  const std::string dir = testing::scratch_dir("cli_ok");
+  const auto sim = run_command(testing::arbor_binary() + " simulate --landmarks 50 --steps 30 --out " + dir + "/w.scn");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const auto run = run_command(testing::arbor_binary() + " run --scenario " + dir + "/w.scn --particles 10 --quiet --out " + dir + "/r");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* f : {"result.json", "trajectory.tum", "map.csv", "steps.csv"})
+    EXPECT_TRUE(std::ifstream(dir + "/r/" + f).good()) << f;
+}
+
+TEST(Cli, MalformedScenarioExitsTwoNamingFileLineAndField) {
+  const std::string dir = testing::scratch_dir("cli_bad");
+  ASSERT_EQ(run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out " + dir + "/w.scn").exit_code, 0);
+  // Corrupt the first range of the first scan.
+  const auto sed = run_command("sed -i '0,/^z [0-9.]*/s//z 1e999/' " + dir + "/w.scn && grep -n '^z 1e999' " + dir + "/w.scn");
+  ASSERT_EQ(sed.exit_code, 0) << sed.output;
+  const std::string line = sed.output.substr(0, sed.output.find(':'));
+  const auto run = run_command(testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out " + dir + "/r");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find(dir + "/w.scn:" + line + ": field 'range'"), std::string::npos) << run.output;
+}
+
+TEST(Cli, UnknownVariantAndMissingFileExitTwo) {
+  const auto bad_map = run_command(testing::arbor_binary() + " run --scenario /nonexistent.scn --map nope --out /tmp/x");
+  EXPECT_EQ(bad_map.exit_code, 2) << bad_map.output;
+  const auto missing = run_command(testing::arbor_binary() + " run --scenario /nonexistent.scn --out /tmp/x");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("/nonexistent.scn"), std::string::npos) << missing.output;
+  const auto bad_option = run_command(testing::arbor_binary() + " simulate --landmarks -5 --out /tmp/x.scn");
+  EXPECT_EQ(bad_option.exit_code, 2) << bad_option.output;
+}
+
+TEST(Cli, HelpExplainsEveryRunOption) {
+  const auto help = run_command(testing::arbor_binary() + " run --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* opt : {"--scenario", "--filter", "--map", "--assoc", "--particles", "--seed", "--threads", "--out"})
+    EXPECT_NE(help.output.find(opt), std::string::npos) << opt;
+}
+
+}  // namespace
+}  // namespace arbor
