@@ -14,6 +14,8 @@
 #include "variants/association/known_association.h"
 #include "variants/association/locality_tree.h"
 #include "variants/association/nearest_neighbor.h"
+#include "variants/maps/hamt_map.h"
+#include "variants/maps/persistent_tree_map.h"
 #include "variants/maps/vector_map.h"
 
 namespace arbor {
@@ -21,7 +23,7 @@ namespace arbor {
 template <class... T>
 struct TypeList {};
 
-using MapBackends = TypeList<VectorMap>;
+using MapBackends = TypeList<VectorMap, PersistentTreeMap, HamtMap<>>;
 using AssociationStrategies = TypeList<KnownAssociation, NearestNeighbor, NearestNeighborNoExclusion, Jcbb, LocalityTree>;
 
 // Builds the engine for the named variants; throws InputError (field "map" or "assoc") listing the valid names.

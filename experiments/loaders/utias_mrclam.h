@@ -1,0 +1,38 @@
+// UTIAS MRCLAM (Leung, Halpern, Barfoot & Liu, IJRR 2011) into a single-robot scenario: velocity commands as
+// controls, camera range-bearing measurements of the barcoded landmarks, Vicon poses and surveyed landmarks as
+// ground truth. Works on any directory laid out like the original dataset. Facts: data/utias_mrclam/SOURCE.md.
+#ifndef ARBOR_EXPERIMENTS_LOADERS_UTIAS_MRCLAM_H_
+#define ARBOR_EXPERIMENTS_LOADERS_UTIAS_MRCLAM_H_
+
+#include <string>
+
+#include "core/io/scenario.h"
+#include "experiments/loaders/load_report.h"
+
+namespace arbor {
+
+struct UtiasOptions {
+  int robot = 1;
+  // Unknown barcodes are known false detections of the real data (SOURCE.md), so by default they are dropped
+  // and counted; strict turns each into an InputError naming file, line and field.
+  bool strict_barcodes = false;
+  // Ground truth is interpolated only between Vicon samples at most this far apart.
+  double max_truth_gap_s = 0.5;
+};
+
+// Noise defaults measured on Dataset 6, robot 1 with estimate_measurement_noise / estimate_motion_noise
+// (docs/datasets.md gives the method and the values for every robot).
+struct UtiasNoiseDefaults {
+  static constexpr double kSigmaRangeM = 0.08;
+  static constexpr double kSigmaBearingRad = 0.011;
+  static constexpr double kSigmaVMps = 0.053;
+  static constexpr double kSigmaOmegaRadps = 0.089;
+};
+
+// Report counts: "dropped: measurement of another robot", "dropped: unknown barcode", "dropped: measurement
+// outside the run", "warning: repeated odometry time" (the later command wins), and the totals.
+Scenario load_utias_mrclam(const std::string& dir, const UtiasOptions& options, LoadReport* report);
+
+}  // namespace arbor
+
+#endif  // ARBOR_EXPERIMENTS_LOADERS_UTIAS_MRCLAM_H_

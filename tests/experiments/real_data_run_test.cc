@@ -1,0 +1,55 @@
+// End to end on real data: the converted UTIAS MRCLAM robot 1 run through FastSLAM 2.0 with known association.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "experiments/loaders/utias_mrclam.h"
+#include "variants/registry.h"
+
+namespace arbor {
+namespace {
+
+// Position RMSE of the filter's weighted-mean pose and of dead reckoning against the interpolated Vicon poses.
+// No alignment: the scenario starts at the Vicon pose, so both live in the Vicon frame.
+struct RunErrors {
+  double filter_rmse_m = 0.0;
+  double dead_reckoning_rmse_m = 0.0;
+  std::size_t landmarks = 0;
+};
+
+RunErrors run_known_association(const Scenario& s, int particles, std::uint64_t seed) {
+  FastSlamOptions options;
+  options.version = FilterVersion::kFastSlam2;
+  options.particles = particles;
+  options.seed = seed;
+  options.threads = 2;
+  auto filter = make_filter("naive", "known", s, options);
+  Pose2 dead_reckoning = s.initial_pose;
+  double sum_filter = 0.0, sum_dr = 0.0;
+  std::size_t n = 0;
+  for (const auto& step : s.steps) {
+    filter->step(step);
+    dead_reckoning = s.motion.apply(dead_reckoning, step.control);
+    if (!step.truth_pose) continue;
+    sum_filter += (filter->estimate().mean.position() - step.truth_pose->position()).squaredNorm();
+    sum_dr += (dead_reckoning.position() - step.truth_pose->position()).squaredNorm();
+    ++n;
+  }
+  return {std::sqrt(sum_filter / n), std::sqrt(sum_dr / n), filter->best_map().size()};
+}
+
+TEST(RealData, UtiasRobot1WithKnownAssociationAteFarBelowDeadReckoning) {
+  LoadReport report;
+  const Scenario s = load_utias_mrclam(std::string(ARBOR_SOURCE_DIR) + "/data/utias_mrclam/MRCLAM_Dataset6", {}, &report);
+  // Measured (Release, 10 particles, seeds 1-5, the whole 760 s): filter 0.37-0.93 m, dead reckoning 2.62 m,
+  // so the worst seed is at 0.35 x dead reckoning; the assertion leaves room for other thread counts and
+  // compilers but still fails for a filter that ignores the measurements.
+  const RunErrors e = run_known_association(s, 10, 1);
+  EXPECT_GT(e.dead_reckoning_rmse_m, 2.0);
+  EXPECT_LT(e.filter_rmse_m, 0.5 * e.dead_reckoning_rmse_m);
+  EXPECT_EQ(e.landmarks, 15u);
+}
+
+}  // namespace
+}  // namespace arbor
