@@ -1,9 +1,10 @@
 // Unknown association inside the engine (issue 4): FastSLAM 2.0 + JCBB on a cluttered world against known
-// association, and bit-identical output across thread counts with a search-based strategy.
+// association, and bit-identical output across thread counts and map back ends with a search-based strategy.
 #include <gtest/gtest.h>
 
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
+#include "variants/registry.h"
 #include "test_support.h"
 
 namespace arbor {
@@ -17,9 +18,11 @@ Scenario cluttered_world(std::uint64_t seed) {
   return simulate(o);
 }
 
-RunOutput run(const Scenario& scenario, const std::string& assoc, int threads = 1, const std::string& out = "") {
+RunOutput run(const Scenario& scenario, const std::string& assoc, int threads = 1, const std::string& out = "",
+              const std::string& map = "naive") {
   RunConfig c;
   c.assoc = assoc;
+  c.map = map;
   c.options.version = FilterVersion::kFastSlam2;
   c.options.particles = 20;
   c.options.seed = 1;
@@ -56,6 +59,20 @@ TEST(AssociationEngine, JcbbRunsAreBitIdenticalAcrossThreadCounts) {
   }
   ASSERT_GT(files[0].size(), 1000u);
   EXPECT_TRUE(files[0] == files[1]);
+}
+
+// Every back end hands landmarks to the strategy in ascending id order, so the searches see identical problems.
+TEST(AssociationEngine, JcbbRunsAreBitIdenticalAcrossMapBackEnds) {
+  const Scenario scenario = cluttered_world(6);
+  std::vector<std::string> files;
+  for (const std::string& map : map_backend_names()) {
+    const std::string dir = testing::scratch_dir("assoc_jcbb_map_" + map);
+    const RunOutput out = run(scenario, "jcbb", 1, dir, map);
+    files.push_back(testing::read_file(dir + "/trajectory.tum") + testing::read_file(dir + "/map.csv") +
+                    out.result["assoc_f1"].dump());
+  }
+  ASSERT_GE(files.size(), 2u);
+  for (std::size_t k = 1; k < files.size(); ++k) EXPECT_TRUE(files[k] == files[0]) << map_backend_names()[k];
 }
 
 }  // namespace
