@@ -180,7 +180,12 @@ int run_relocalize(const RelocalizeArgs& a) {
         typename S::Scratch scratch;
         AssociationResult r;
         const auto start = std::chrono::steady_clock::now();
-        strategy.solve(problem, scratch, r);
+        if constexpr (requires(Pose2 pose) { strategy.solve_with_pose(problem, scratch, r, &pose); }) {
+          Pose2 pose;  // the pose-free search, without the prior check that solve() applies per particle
+          strategy.solve_with_pose(problem, scratch, r, &pose);
+        } else {
+          strategy.solve(problem, scratch, r);
+        }
         tally[s].seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         tally[s].hypotheses.push_back(static_cast<double>(r.stats.hypotheses));
         // Relocalised: at least three correct pairings (enough to fix the pose) and no wrong one.

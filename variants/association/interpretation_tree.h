@@ -19,9 +19,12 @@ class InterpretationTree {
 
   explicit InterpretationTree(const AssociationOptions& options)
       : settings_(association::make_tree_settings(options, false)) {}
+  // Per-particle use: the pose-free search, whose answer must also pass the joint test with the problem's own
+  // predictions (so a coincidence elsewhere in the map cannot capture a tracking particle).
   void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
     association::solve_tree(problem, settings_, scratch, result);
   }
+  // Relocalisation: the prior is not trusted (no prior check); returns the verified pose world_T_robot.
   bool solve_with_pose(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result,
                        Pose2* world_T_robot) const {
     bool verified = false;

@@ -27,10 +27,12 @@ class LocalityTree {
   static constexpr bool kUsesGroundTruth = false;
 
   explicit LocalityTree(const AssociationOptions& options) : settings_(association::make_tree_settings(options, true)) {}
+  // Per-particle use: the pose-free search, whose answer must also pass the joint test with the problem's own
+  // predictions (so a coincidence elsewhere in the map cannot capture a tracking particle).
   void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
     association::solve_tree(problem, settings_, scratch, result);
   }
-  // As solve(), also returning the verified pose world_T_robot (relocalisation); false when none verified.
+  // Relocalisation: the prior is not trusted (no prior check); returns the verified pose world_T_robot.
   bool solve_with_pose(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result,
                        Pose2* world_T_robot) const {
     bool verified = false;

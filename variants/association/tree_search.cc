@@ -7,6 +7,7 @@
 
 #include "core/math/chi_square.h"
 #include "core/models/range_bearing_model.h"
+#include "variants/association/joint_compatibility.h"
 #include "variants/association/rigid_alignment.h"
 
 namespace arbor::association {
@@ -99,6 +100,7 @@ class TreeSearch {
       std::vector<int> candidate = s_.ranked[h];
       Pose2 candidate_pose = s_.ranked_pose[h];
       complete(&candidate, &candidate_pose);
+      if (set_.check_prior && !consistent_with_prior(candidate)) continue;
       const int count = static_cast<int>(std::count_if(candidate.begin(), candidate.end(), [](int j) { return j >= 0; }));
       if (count > best_count) {
         best_count = count;
@@ -106,6 +108,12 @@ class TreeSearch {
         pose = candidate_pose;
         near_any = s_.gating.near_any;
       }
+    }
+    if (best_count < 0) {
+      // Every verified hypothesis contradicted the prior: nothing is paired.
+      gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+      finish_unpaired(s_.gating.near_any, &result.pairing);
+      return false;
     }
     s_.gating.near_any = std::move(near_any);
     for (int k = 0; k < m_; ++k)
@@ -228,6 +236,17 @@ class TreeSearch {
     s_.current[k] = -1;
   }
 
+  // Per-particle use: the pose-free answer must also pass the joint test with the particle's own predictions
+  // (innovation covariance, pose covariance included), so a geometric coincidence elsewhere in the map cannot
+  // pull a tracking particle away.
+  bool consistent_with_prior(const std::vector<int>& h) {
+    std::vector<LandmarkId> ids(m_, kNewLandmark);
+    for (int k = 0; k < m_; ++k)
+      if (h[k] >= 0) ids[s_.order[k]] = p_.candidates[h[k]].id;
+    ++stats_->tests;
+    return joint_compatibility(p_, ids, set_.gate_probability).compatible;
+  }
+
   // A complete interpretation is verified at once (closed-form pose, joint test), and only verified ones are
   // ranked: verifying "the best, then the next best" in rank order picks the same hypothesis, and pruning
   // against verified ones keeps geometric coincidences that fail verification from crowding the ranking.
@@ -339,6 +358,13 @@ class TreeSearch {
 
 void solve_tree(const AssociationProblem& problem, const TreeSettings& settings, TreeScratch& scratch,
                 AssociationResult& result, Pose2* pose, bool* verified) {
+  if (pose != nullptr && settings.check_prior) {
+    // Relocalisation (a pose is asked for): the prior is not trusted.
+    TreeSettings pose_free = settings;
+    pose_free.check_prior = false;
+    solve_tree(problem, pose_free, scratch, result, pose, verified);
+    return;
+  }
   result.stats = {};
   result.stats.hypotheses = 1;  // the empty hypothesis
   TreeSearch search(problem, settings, scratch, &result.stats);

@@ -35,6 +35,9 @@ struct TreeScratch {
 struct TreeSettings {
   bool use_locality = true;
   bool anchor_only = false;  // open set = the first paired feature's locality (else the intersection over all)
+  // Per-particle use: the answer must also be jointly compatible with the problem's own predictions (the
+  // particle's pose and P). Ignored when solve_tree is asked for the pose (relocalisation: prior not trusted).
+  bool check_prior = true;
   double gate_probability = 0.99;
   double new_landmark_gate = 0.0;  // chi2(new_landmark_probability, 2)
   double gate2 = 0.0;              // chi2(gate_probability, 2)
