@@ -15,7 +15,14 @@ int main(int argc, char** argv) {
   arbor::cli::CommandAction action;
   arbor::cli::add_simulate_command(app, &action);
   arbor::cli::add_run_command(app, &action);
+  arbor::cli::add_associate_command(app, &action);
+  arbor::cli::add_relocalize_command(app, &action);
   arbor::cli::add_convert_command(app, &action);
+#ifdef ARBOR_HAVE_SMOOTHER
+  arbor::cli::add_smooth_command(app, &action);
+#endif
+  arbor::cli::add_sweep_command(app, &action);
+  arbor::cli::add_merge_command(app, &action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

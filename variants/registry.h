@@ -10,7 +10,12 @@
 #include <vector>
 
 #include "core/engine/filter.h"
+#include "variants/association/jcbb.h"
 #include "variants/association/known_association.h"
+#include "variants/association/locality_tree.h"
+#include "variants/association/nearest_neighbor.h"
+#include "variants/maps/hamt_map.h"
+#include "variants/maps/persistent_tree_map.h"
 #include "variants/maps/vector_map.h"
 
 namespace arbor {
@@ -18,8 +23,8 @@ namespace arbor {
 template <class... T>
 struct TypeList {};
 
-using MapBackends = TypeList<VectorMap>;
-using AssociationStrategies = TypeList<KnownAssociation>;
+using MapBackends = TypeList<VectorMap, PersistentTreeMap, HamtMap<>>;
+using AssociationStrategies = TypeList<KnownAssociation, NearestNeighbor, NearestNeighborNoExclusion, Jcbb, LocalityTree>;
 
 // Builds the engine for the named variants; throws InputError (field "map" or "assoc") listing the valid names.
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,

@@ -61,6 +61,9 @@ struct AssociationProblem {
 struct AssociationStats {
   std::int64_t hypotheses = 0;  // search-tree nodes visited
   std::int64_t tests = 0;       // compatibility tests run
+  // True when a tree search stopped at AssociationOptions::max_hypotheses: the answer is the best found so
+  // far (still jointly compatible), not necessarily the optimum.
+  bool budget_exhausted = false;
 };
 
 struct AssociationResult {

@@ -14,7 +14,12 @@ using CommandAction = std::function<int()>;
 
 void add_simulate_command(CLI::App& app, CommandAction* action);
 void add_run_command(CLI::App& app, CommandAction* action);
+void add_associate_command(CLI::App& app, CommandAction* action);
+void add_relocalize_command(CLI::App& app, CommandAction* action);
 void add_convert_command(CLI::App& app, CommandAction* action);
+void add_smooth_command(CLI::App& app, CommandAction* action);  // only with ARBOR_HAVE_SMOOTHER
+void add_sweep_command(CLI::App& app, CommandAction* action);
+void add_merge_command(CLI::App& app, CommandAction* action);
 
 }  // namespace arbor::cli
 

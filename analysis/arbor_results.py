@@ -1,0 +1,240 @@
+#!/usr/bin/python3
+"""Shared loading and plotting helpers for the analysis scripts: the one place that knows the sweep's
+result files (results.jsonl / results.csv, runs/<key>/{result.json,trajectory.tum,map.csv}, scenarios)."""
+
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, never a window
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+
+PARAMS = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed", "filter", "map",
+          "assoc", "particles", "seed", "threads"]
+# The columns that tell two method configurations apart in a figure's legend.
+METHOD = ["filter", "map", "assoc"]
+# Everything else a sweep may vary; a figure draws one line per combination that varies in the results.
+CONTEXT = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "particles", "threads"]
+
+
+def load_results(path):
+    """All rows of a sweep directory (or of a results.jsonl / results.csv file) as a DataFrame.
+    A trailing line without newline is an interrupted append and is ignored; a key recorded twice keeps its
+    last row (what --retry-failed appends)."""
+    if os.path.isdir(path):
+        jsonl = os.path.join(path, "results.jsonl")
+        path = jsonl if os.path.exists(jsonl) else os.path.join(path, "results.csv")
+    if path.endswith(".csv"):
+        df = pd.read_csv(path)
+    else:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        lines = text.split("\n")[:-1]  # the piece after the last newline is not a row
+        df = pd.DataFrame([json.loads(line) for line in lines if line.strip()])
+    if df.empty:
+        return df
+    df = df.drop_duplicates(subset="key", keep="last").reset_index(drop=True)
+    for c in df.columns:
+        if c not in ("key", "status", "error", "dataset", "world", "filter", "map", "assoc", "scenario",
+                     "run_dir", "commit", "host", "compiler", "build", "finished_at", "termination"):
+            df[c] = pd.to_numeric(df[c], errors="coerce")
+    return df
+
+
+def ok_rows(df):
+    return df[df["status"] == "ok"].copy() if "status" in df else df
+
+
+def has_data(df, *columns):
+    """True when every column exists and has at least one value."""
+    return all(c in df.columns and df[c].notna().any() for c in columns)
+
+
+def varying(df, columns):
+    """The columns (of `columns`) that take more than one value in df: the ones a legend must show."""
+    return [c for c in columns if c in df.columns and df[c].nunique(dropna=True) > 1]
+
+
+def lines_for(df, x, min_points=2):
+    """The groups of rows that make one line each in a figure with x on the horizontal axis: rows grouped by
+    every method and context column that varies (except x), keeping groups with at least min_points distinct
+    x values. Yields (label, rows); the label names only the columns that differ between the kept lines."""
+    df = df[df[x].notna()]
+    by = [c for c in varying(df, METHOD + CONTEXT) if c != x]
+    if not by:
+        if df[x].nunique() >= min_points:
+            yield "all runs", df
+        return
+    kept = [g for _, g in df.groupby(by if len(by) > 1 else by[0], sort=True, dropna=False) if g[x].nunique() >= min_points]
+    if not kept:
+        return
+    shown = varying(pd.concat(kept), by) or ["filter"]
+    for g in kept:
+        yield label(g.iloc[0], shown), g
+
+
+def label(row, columns):
+    parts = []
+    for c in columns:
+        v = row[c]
+        parts.append(str(int(v)) if isinstance(v, float) and float(v).is_integer() else str(v))
+    return "/".join(parts) if parts else "all runs"
+
+
+def t_quantile(dof, q=0.975):
+    """Student-t quantile; scipy when present, else a normal approximation with the Cornish-Fisher term."""
+    try:
+        from scipy import stats
+        return float(stats.t.ppf(q, dof))
+    except ImportError:
+        z = 1.959963984540054
+        return z + (z ** 3 + z) / (4 * dof) if dof > 0 else float("inf")
+
+
+def mean_ci(values):
+    """Mean and the half-width of its 95 % confidence interval (t distribution; 0 for a single value)."""
+    v = np.asarray([x for x in values if x is not None and np.isfinite(x)], dtype=float)
+    if len(v) == 0:
+        return float("nan"), float("nan")
+    if len(v) == 1:
+        return float(v[0]), 0.0
+    return float(v.mean()), float(t_quantile(len(v) - 1) * v.std(ddof=1) / math.sqrt(len(v)))
+
+
+def fit_loglog(x, y):
+    """Least-squares fit of log10 y = a + b log10 x. Returns (b, b_ci95_halfwidth, a, n). The interval is the
+    t-based 95 % interval of the slope (needs at least 3 points; nan otherwise)."""
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    keep = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
+    lx, ly = np.log10(x[keep]), np.log10(y[keep])
+    n = len(lx)
+    if n < 2 or np.ptp(lx) == 0:
+        return float("nan"), float("nan"), float("nan"), n
+    b, a = np.polyfit(lx, ly, 1)
+    if n < 3:
+        return float(b), float("nan"), float(a), n
+    residual = ly - (a + b * lx)
+    se = math.sqrt(float(residual @ residual) / (n - 2) / float(((lx - lx.mean()) ** 2).sum()))
+    return float(b), float(t_quantile(n - 2) * se), float(a), n
+
+
+def summarize(df, by, metric):
+    """Mean and 95 % CI of `metric` per group of `by` (sorted), as a DataFrame with mean, ci, n."""
+    rows = []
+    for key, group in df.groupby(by if len(by) > 1 else by[0], dropna=False, sort=True):
+        m, ci = mean_ci(group[metric].to_numpy(dtype=float))
+        key = key if isinstance(key, tuple) else (key,)
+        rows.append(dict(zip(by, key), mean=m, ci=ci, n=int(group[metric].notna().sum())))
+    out = pd.DataFrame(rows)
+    out["ci"] = out["ci"].fillna(0.0)
+    return out
+
+
+def fmt_num(v, digits=3):
+    if v is None or (isinstance(v, float) and not np.isfinite(v)):
+        return "–"
+    if isinstance(v, (int, np.integer)) or (isinstance(v, float) and float(v).is_integer() and abs(v) < 1e6):
+        return str(int(v))
+    return f"{v:.{digits}g}"
+
+
+def markdown_table(df, digits=3):
+    """A GitHub Markdown table (no dependency on tabulate)."""
+    cols = list(df.columns)
+    out = ["| " + " | ".join(str(c) for c in cols) + " |", "|" + "---|" * len(cols)]
+    for _, r in df.iterrows():
+        out.append("| " + " | ".join(fmt_num(r[c], digits) if not isinstance(r[c], str) else r[c] for c in cols) + " |")
+    return "\n".join(out)
+
+
+def new_figure(width=6.4, height=4.2):
+    fig, ax = plt.subplots(figsize=(width, height), layout="constrained")
+    ax.grid(True, which="both", alpha=0.3)
+    return fig, ax
+
+
+def save_figure(fig, out_dir, name):
+    os.makedirs(out_dir, exist_ok=True)
+    path = os.path.join(out_dir, name)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+# --- one run's files -------------------------------------------------------------------------------------
+
+def read_tum(path):
+    """A TUM trajectory (t x y z qx qy qz qw) with the planar heading recovered from the quaternion."""
+    data = np.loadtxt(path, comments="#", ndmin=2)
+    df = pd.DataFrame(data[:, :8], columns=["t", "x", "y", "z", "qx", "qy", "qz", "qw"])
+    df["theta"] = 2.0 * np.arctan2(df["qz"], df["qw"])
+    return df
+
+
+def read_map_csv(path):
+    """An estimated map: one landmark per row. Positions are the columns x, y (or the first two numeric
+    columns after an id column when the header names them otherwise)."""
+    df = pd.read_csv(path, comment="#")
+    lower = {c.lower().strip(): c for c in df.columns}
+    for xs, ys in (("x", "y"), ("mean_x", "mean_y"), ("mu_x", "mu_y"), ("x_m", "y_m")):
+        if xs in lower and ys in lower:
+            return df.rename(columns={lower[xs]: "x", lower[ys]: "y"})
+    numeric = [c for c in df.columns if pd.api.types.is_numeric_dtype(df[c])]
+    if len(numeric) >= 3:
+        return df.rename(columns={numeric[1]: "x", numeric[2]: "y"})
+    raise ValueError(f"{path}: cannot find landmark x, y columns in {list(df.columns)}")
+
+
+def read_scenario_truth(path):
+    """Ground truth from a scenario file (docs/scenario_format.md): poses per step, landmarks, GPS track."""
+    poses, landmarks, gps = [], [], []
+    time = 0.0
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            fields = line.split()
+            if not fields or fields[0].startswith("#"):
+                continue
+            kind = fields[0]
+            if kind == "step":
+                time = float(fields[1])
+            elif kind == "truth":
+                poses.append((time, float(fields[1]), float(fields[2]), float(fields[3])))
+            elif kind == "landmark":
+                landmarks.append((int(fields[1]), float(fields[2]), float(fields[3])))
+            elif kind == "gps":
+                gps.append((float(fields[1]), float(fields[2]), float(fields[3])))
+    return (pd.DataFrame(poses, columns=["t", "x", "y", "theta"]),
+            pd.DataFrame(landmarks, columns=["id", "x", "y"]),
+            pd.DataFrame(gps, columns=["t", "x", "y"]))
+
+
+def main_for(make, description):
+    """The command line every figure script shares: SCRIPT RESULTS_DIR [--out DIR]."""
+    import argparse
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("results", help="a sweep results directory (results.jsonl) or a results file")
+    parser.add_argument("--out", help="where figures go (default: RESULTS/report)")
+    args = parser.parse_args()
+    out = args.out or os.path.join(args.results if os.path.isdir(args.results) else os.path.dirname(args.results), "report")
+    df = load_results(args.results)
+    sections = make(df, out, args.results)
+    if not sections:
+        print(f"{os.path.basename(sys.argv[0])}: nothing to plot in {args.results} (the columns this figure needs "
+              "do not vary or are missing)", file=sys.stderr)
+    for s in sections:
+        print(s.text)
+    return 0
+
+
+class Section:
+    """One part of the report: a title and Markdown text (figure links relative to the report)."""
+
+    def __init__(self, title, text):
+        self.title = title
+        self.text = text

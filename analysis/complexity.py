@@ -1,0 +1,49 @@
+#!/usr/bin/python3
+"""Complexity figure: FastSLAM step time against the number of landmarks, log-log, one line per map back end,
+with the fitted slope and its 95 % confidence interval (DESIGN.md §3: tree/trie <= 0.15, naive ~ 1).
+Reads: results.jsonl columns world_landmarks (or landmarks), step_time_median_s, map."""
+
+import sys
+
+import numpy as np
+
+import arbor_results as ar
+
+FIGURE = "complexity_step_time.png"
+
+
+def make(df, out_dir, results_path=None):
+    df = ar.ok_rows(df)
+    x_col = "world_landmarks" if ar.has_data(df, "world_landmarks") else "landmarks"
+    if not ar.has_data(df, x_col, "step_time_median_s", "map") or df[x_col].nunique() < 2:
+        return []
+    df = df[df["step_time_median_s"].notna()]
+    fig, ax = ar.new_figure()
+    rows = []
+    for name, g in ar.lines_for(df, x_col):
+        slope, ci, intercept, n = ar.fit_loglog(g[x_col], g["step_time_median_s"])
+        s = ar.summarize(g, [x_col], "step_time_median_s")
+        line = ax.errorbar(s[x_col], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
+                           label=f"{name}: slope {slope:.2f} ± {ci:.2f}" if np.isfinite(ci) else f"{name}: slope {slope:.2f}")
+        if np.isfinite(slope):
+            xs = np.logspace(np.log10(s[x_col].min()), np.log10(s[x_col].max()), 50)
+            ax.plot(xs, 10 ** (intercept + slope * np.log10(xs)), color=line[0].get_color(), alpha=0.6)
+        rows.append({"configuration": name, "slope": slope, "ci95": ci, "points": n,
+                     "N min": s[x_col].min(), "N max": s[x_col].max(),
+                     "step time at N max (s)": s["mean"].iloc[-1]})
+        print(f"complexity: {name}: log-log slope {slope:.3f} ± {ci:.3f} (95 % CI, {n} points)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("landmarks in the world (constant density)" if x_col == "world_landmarks" else "landmarks in the map")
+    ax.set_ylabel("median FastSLAM step time (s)")
+    ax.set_title("Step time vs map size")
+    ax.legend(fontsize=8)
+    ar.save_figure(fig, out_dir, FIGURE)
+    table = ar.markdown_table(ar.pd.DataFrame(rows))
+    return [ar.Section("Complexity: step time vs map size",
+                       f"![step time vs landmarks]({FIGURE})\n\nLog–log least-squares slopes with 95 % t intervals "
+                       f"(points: every run; markers: mean ± 95 % CI over seeds).\n\n{table}\n")]
+
+
+if __name__ == "__main__":
+    sys.exit(ar.main_for(make, __doc__))

@@ -1,0 +1,50 @@
+#!/usr/bin/python3
+"""Hypotheses figure: association hypotheses visited against map size, per strategy (locality-restricted
+vs unrestricted interpretation tree), log-log with fitted slopes (Ge & Lewis 2006: linear in n with locality).
+Reads: results.jsonl columns world_landmarks (or landmarks), assoc, and the first present of
+assoc_hypotheses_mean / hypotheses_mean / hypotheses (per step, divided by steps) / assoc_hypotheses."""
+
+import sys
+
+import numpy as np
+
+import arbor_results as ar
+
+FIGURE = "hypotheses_vs_map_size.png"
+CANDIDATES = ["assoc_hypotheses_mean", "hypotheses_mean", "hypotheses_per_step", "assoc_hypotheses", "hypotheses"]
+
+
+def make(df, out_dir, results_path=None):
+    df = ar.ok_rows(df)
+    if ar.has_data(df, "hypotheses", "steps"):  # `arbor run` reports the run's total; per step compares runs
+        df["hypotheses_per_step"] = df["hypotheses"] / df["steps"]
+    metric = next((c for c in CANDIDATES if ar.has_data(df, c)), None)
+    x_col = "world_landmarks" if ar.has_data(df, "world_landmarks") else "landmarks"
+    if metric is None or not ar.has_data(df, x_col) or df[x_col].nunique() < 2:
+        return []
+    df = df[df[metric].notna()]
+    fig, ax = ar.new_figure()
+    rows = []
+    for name, g in ar.lines_for(df, x_col):
+        slope, ci, intercept, n = ar.fit_loglog(g[x_col], g[metric])
+        s = ar.summarize(g, [x_col], metric)
+        line = ax.errorbar(s[x_col], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
+                           label=f"{name}: slope {slope:.2f} ± {ci:.2f}" if np.isfinite(ci) else f"{name}: slope {slope:.2f}")
+        if np.isfinite(slope):
+            xs = np.logspace(np.log10(s[x_col].min()), np.log10(s[x_col].max()), 50)
+            ax.plot(xs, 10 ** (intercept + slope * np.log10(xs)), color=line[0].get_color(), alpha=0.6)
+        rows.append({"strategy": name, "slope": slope, "ci95": ci, "points": n, f"{metric} at N max": s["mean"].iloc[-1]})
+        print(f"hypotheses: {name}: log-log slope {slope:.3f} ± {ci:.3f}")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("landmarks")
+    ax.set_ylabel(metric.replace("_", " "))
+    ax.set_title("Association hypotheses vs map size")
+    ax.legend(fontsize=8)
+    ar.save_figure(fig, out_dir, FIGURE)
+    return [ar.Section("Hypotheses vs map size",
+                       f"![hypotheses vs map size]({FIGURE})\n\n{ar.markdown_table(ar.pd.DataFrame(rows))}\n")]
+
+
+if __name__ == "__main__":
+    sys.exit(ar.main_for(make, __doc__))

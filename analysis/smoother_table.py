@@ -1,0 +1,42 @@
+#!/usr/bin/python3
+"""FastSLAM vs smoother table: for each scenario, the ATE and landmark RMSE of every FastSLAM configuration
+next to the Ceres smoother's on the same scenario and seed, and the ratio (DESIGN.md §10 target: FastSLAM ATE
+<= 1.3x the smoother's with true association). Reads: results.jsonl rows with filter = smoother and fastslam*."""
+
+import sys
+
+import arbor_results as ar
+
+SCENARIO = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed"]
+
+
+def make(df, out_dir, results_path=None):
+    df = ar.ok_rows(df)
+    if "filter" not in df or not (df["filter"] == "smoother").any() or not (df["filter"] != "smoother").any():
+        return []
+    scenario = [c for c in SCENARIO if c in df.columns]
+    smoother = df[df["filter"] == "smoother"]
+    fastslam = df[df["filter"] != "smoother"]
+    joined = fastslam.merge(smoother[scenario + ["seed", "ate_rmse_m", "landmark_rmse_m"]],
+                            on=scenario + ["seed"], suffixes=("", "_smoother"), how="inner")
+    if joined.empty:
+        return []
+    joined["ate_ratio"] = joined["ate_rmse_m"] / joined["ate_rmse_m_smoother"]
+    groups = [c for c in ar.METHOD + ["particles"] if c in joined.columns]
+    rows = []
+    for key, g in joined.groupby(groups, sort=True):
+        ratio, ratio_ci = ar.mean_ci(g["ate_ratio"])
+        rows.append({"configuration": ar.label(g.iloc[0], groups), "runs": len(g),
+                     "ATE (m)": g["ate_rmse_m"].mean(), "smoother ATE (m)": g["ate_rmse_m_smoother"].mean(),
+                     "ATE ratio": ratio, "ratio ci95": ratio_ci,
+                     "landmark RMSE (m)": g["landmark_rmse_m"].mean(),
+                     "smoother landmark RMSE (m)": g["landmark_rmse_m_smoother"].mean()})
+    frame = ar.pd.DataFrame(rows)
+    print(frame.to_string(index=False))
+    return [ar.Section("FastSLAM vs smoother",
+                       "Same scenarios and seeds; ratio = FastSLAM ATE / smoother ATE per run, mean ± 95 % CI.\n\n"
+                       f"{ar.markdown_table(frame)}\n")]
+
+
+if __name__ == "__main__":
+    sys.exit(ar.main_for(make, __doc__))

@@ -1,0 +1,233 @@
+// `arbor relocalize`: the kidnapped robot (DESIGN.md §4, issue 4 item 6). A robot in a known simulated map
+// loses its pose: NN and JCBB are given a wrong prior (the pose before a large jump) and the map landmarks in
+// range of that prior; the locality tree gets no prior and the whole map. Reports per strategy the success
+// rate, hypotheses and time per call over many trials.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+
+#include "core/io/input_error.h"
+#include "core/models/range_bearing_model.h"
+#include "experiments/cli/commands.h"
+#include "experiments/sim/world.h"
+#include "variants/association/strategy_dispatch.h"
+
+namespace arbor::cli {
+namespace {
+
+struct RelocalizeArgs {
+  std::string world = "uniform";
+  int landmarks = 1000;
+  int observations = 10;
+  double clutter = 2.0;
+  int trials = 100;
+  std::uint64_t seed = 1;
+  double jump_m = 10.0;
+  double jump_rad = 1.0;
+  double map_sigma_m = 0.1;
+  std::vector<std::string> strategies{"nn", "jcbb", "locality"};
+  bool csv = false;
+};
+
+// The known map: every landmark estimated to map_sigma, with its covisibility locality (the nearest
+// landmarks within sensor range and in line of sight, capped: what a mapping run would have recorded).
+struct KnownMap {
+  std::vector<Vec2> mean;
+  Mat2 cov;
+  std::vector<LocalitySet> locality;
+};
+
+KnownMap make_known_map(const World& world, const SensorModel& sensor, const LandmarkGrid& grid, double sigma,
+                        std::mt19937_64& rng) {
+  KnownMap map;
+  std::normal_distribution<double> normal(0.0, sigma);
+  map.cov = Mat2::Identity() * sigma * sigma;
+  const int n = static_cast<int>(world.landmarks.size());
+  map.mean.resize(n);
+  map.locality.resize(n);
+  for (int j = 0; j < n; ++j) map.mean[j] = world.landmarks[j].position + Vec2(normal(rng), normal(rng));
+  std::vector<std::pair<double, int>> near;
+  for (int j = 0; j < n; ++j) {
+    const Vec2& p = world.landmarks[j].position;
+    near.clear();
+    grid.visit_within(p, sensor.max_range_m, [&](int h) {
+      const Vec2& q = world.landmarks[h].position;
+      const double d = (q - p).norm();
+      if (h != j && d <= sensor.max_range_m && world.line_of_sight(p, q)) near.push_back({d, h});
+    });
+    std::sort(near.begin(), near.end());
+    for (const auto& [d, h] : near) {
+      if (map.locality[j].size() == LocalitySet::kCapacity) break;
+      map.locality[j].add(h);
+    }
+  }
+  return map;
+}
+
+AssociationCandidate make_candidate(const KnownMap& map, int j, const Pose2& prior, const Mat2& R) {
+  AssociationCandidate c;
+  c.id = j;
+  Mat2 H;
+  c.z_hat = range_bearing_predict(prior, map.mean[j], &H, &c.H_pose);
+  c.S = H * map.cov * H.transpose() + R;
+  c.position = map.mean[j];
+  c.position_cov = map.cov;
+  c.locality = map.locality[j];
+  return c;
+}
+
+struct Tally {
+  int success = 0;
+  std::vector<double> seconds, hypotheses;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+int run_relocalize(const RelocalizeArgs& a) {
+  WorldOptions wo;
+  if (!from_string(a.world, &wo.kind)) throw InputError("", 0, "--world", "must be uniform, clustered or rooms");
+  if (a.landmarks < 3) throw InputError("", 0, "--landmarks", "must be at least 3");
+  if (a.observations < 2) throw InputError("", 0, "--observations", "must be at least 2");
+  if (a.trials < 1) throw InputError("", 0, "--trials", "must be at least 1");
+  if (a.clutter < 0.0) throw InputError("", 0, "--clutter", "must be >= 0");
+  for (const auto& s : a.strategies)
+    if (!visit_strategy(StandaloneStrategies{}, s, []<class S>() {}))
+      throw InputError("", 0, "--assoc", fmt::format("unknown strategy '{}' (valid: {})", s,
+                                                     fmt::join(strategy_names(StandaloneStrategies{}), ", ")));
+  wo.landmarks = a.landmarks;
+  wo.seed = a.seed;
+  const World world = make_world(wo);
+  SensorModel sensor;
+  sensor.max_range_m = 20.0;
+  sensor.min_range_m = 0.5;
+  sensor.fov_rad = kPi;
+  sensor.sigma_range_m = 0.1;
+  sensor.sigma_bearing_rad = 0.5 * kPi / 180.0;
+  const Mat2 R = sensor.R();
+  const LandmarkGrid grid(world, sensor.max_range_m);
+  std::mt19937_64 rng(a.seed * 7919 + 17);
+  const KnownMap map = make_known_map(world, sensor, grid, a.map_sigma_m, rng);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  AssociationOptions options;
+  std::vector<Tally> tally(a.strategies.size());
+  // Pose covariance the prior claims (odometry-sized), far smaller than the jump: the prior is confidently wrong.
+  const Mat3 P = Vec3(0.5 * 0.5, 0.5 * 0.5, 0.1 * 0.1).asDiagonal();
+
+  for (int trial = 0; trial < a.trials; ++trial) {
+    // A pose with at least `observations` visible landmarks, away from the border.
+    Pose2 truth;
+    std::vector<std::pair<double, int>> visible;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      truth = {world.side_m * (0.1 + 0.8 * unit(rng)), world.side_m * (0.1 + 0.8 * unit(rng)),
+               wrap_angle(kPi * (2.0 * unit(rng) - 1.0))};
+      visible.clear();
+      grid.visit_within(truth.position(), sensor.max_range_m, [&](int j) {
+        const Vec2 z = range_bearing_predict(truth, world.landmarks[j].position);
+        if (sensor.in_view(z) && world.line_of_sight(truth.position(), world.landmarks[j].position))
+          visible.push_back({z.x(), j});
+      });
+      if (static_cast<int>(visible.size()) >= a.observations) break;
+    }
+    std::sort(visible.begin(), visible.end());
+    visible.resize(std::min<std::size_t>(visible.size(), a.observations));
+    AssociationProblem measured;
+    std::vector<LandmarkId> truth_ids;
+    for (const auto& [r, j] : visible) {
+      Vec2 z = range_bearing_predict(truth, world.landmarks[j].position);
+      z += Vec2(sensor.sigma_range_m * normal(rng), sensor.sigma_bearing_rad * normal(rng));
+      measured.measurements.push_back({Vec2(std::max(z.x(), 0.0), wrap_angle(z.y()))});
+      truth_ids.push_back(j);
+    }
+    std::poisson_distribution<int> clutter(a.clutter);
+    for (int k = clutter(rng); k > 0; --k) {
+      const double r = sensor.min_range_m + (sensor.max_range_m - sensor.min_range_m) * unit(rng);
+      measured.measurements.push_back({Vec2(r, 0.5 * sensor.fov_rad * (2.0 * unit(rng) - 1.0))});
+      truth_ids.push_back(-1);
+    }
+    // The kidnapping: the prior is where the robot was before a jump of jump_m and jump_rad.
+    const double dir = kPi * (2.0 * unit(rng) - 1.0);
+    const Pose2 prior{truth.x + a.jump_m * std::cos(dir), truth.y + a.jump_m * std::sin(dir),
+                      wrap_angle(truth.theta + (unit(rng) < 0.5 ? -1.0 : 1.0) * a.jump_rad)};
+    AssociationProblem with_prior = measured, whole_map = measured;
+    with_prior.R = whole_map.R = R;
+    with_prior.P = P;
+    grid.visit_within(prior.position(), sensor.max_range_m + 2.0, [&](int j) {
+      const AssociationCandidate c = make_candidate(map, j, prior, R);
+      if (c.z_hat.x() <= sensor.max_range_m + 2.0 && std::abs(c.z_hat.y()) <= 0.5 * sensor.fov_rad + 0.2)
+        with_prior.candidates.push_back(c);
+    });
+    std::sort(with_prior.candidates.begin(), with_prior.candidates.end(),
+              [](const auto& x, const auto& y) { return x.id < y.id; });
+    for (int j = 0; j < static_cast<int>(map.mean.size()); ++j)
+      whole_map.candidates.push_back(make_candidate(map, j, prior, R));
+
+    for (std::size_t s = 0; s < a.strategies.size(); ++s) {
+      visit_strategy(StandaloneStrategies{}, a.strategies[s], [&]<class S>() {
+        const bool pose_free = S::kName == LocalityTree::kName || S::kName == InterpretationTree::kName;
+        const AssociationProblem& problem = pose_free ? whole_map : with_prior;
+        const S strategy(options);
+        typename S::Scratch scratch;
+        AssociationResult r;
+        const auto start = std::chrono::steady_clock::now();
+        strategy.solve(problem, scratch, r);
+        tally[s].seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        tally[s].hypotheses.push_back(static_cast<double>(r.stats.hypotheses));
+        // Relocalised: at least three correct pairings (enough to fix the pose) and no wrong one.
+        int correct = 0, wrong = 0;
+        for (std::size_t i = 0; i < r.pairing.size(); ++i)
+          if (r.pairing[i] >= 0) (r.pairing[i] == truth_ids[i] ? correct : wrong) += 1;
+        tally[s].success += correct >= 3 && wrong == 0;
+      });
+    }
+  }
+  if (a.csv) fmt::print("strategy,world,n,m,clutter,trials,success_rate,median_hypotheses,median_time_s\n");
+  for (std::size_t s = 0; s < a.strategies.size(); ++s) {
+    const double rate = static_cast<double>(tally[s].success) / a.trials;
+    if (a.csv)
+      fmt::print("{},{},{},{},{},{},{:.4f},{},{:.9g}\n", a.strategies[s], a.world, a.landmarks, a.observations,
+                 a.clutter, a.trials, rate, median(tally[s].hypotheses), median(tally[s].seconds));
+    else
+      fmt::print("{:<10} n={} m={} clutter={} trials={} success={:.3f} median_hypotheses={} median_time_s={:.6f}\n",
+                 a.strategies[s], a.landmarks, a.observations, a.clutter, a.trials, rate,
+                 median(tally[s].hypotheses), median(tally[s].seconds));
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_relocalize_command(CLI::App& app, CommandAction* action) {
+  auto args = std::make_shared<RelocalizeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "relocalize",
+      "Kidnapped-robot experiment in a known simulated map: NN and JCBB get a wrong pose prior (the pose before a "
+      "jump) and the landmarks in range of it; the locality tree gets no prior and the whole map. Success = at "
+      "least three correct pairings and no wrong one. Prints success rate, median hypotheses and time per strategy.");
+  cmd->add_option("--world", args->world, "uniform, clustered or rooms")->capture_default_str();
+  cmd->add_option("--landmarks", args->landmarks, "Map size n")->capture_default_str();
+  cmd->add_option("--observations", args->observations, "Measured landmarks per scan m (the nearest visible)")
+      ->capture_default_str();
+  cmd->add_option("--clutter", args->clutter, "Expected spurious measurements per scan (Poisson)")->capture_default_str();
+  cmd->add_option("--trials", args->trials, "Kidnappings")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed (world and trials)")->capture_default_str();
+  cmd->add_option("--jump-m", args->jump_m, "Position jump of the kidnapping [m]")->capture_default_str();
+  cmd->add_option("--jump-rad", args->jump_rad, "Heading jump of the kidnapping [rad]")->capture_default_str();
+  cmd->add_option("--map-sigma", args->map_sigma_m, "Std dev of the known map's landmark estimates [m]")
+      ->capture_default_str();
+  cmd->add_option("--assoc", args->strategies, "Strategies to compare")->delimiter(',')->capture_default_str();
+  cmd->add_flag("--csv", args->csv, "CSV output with a header line");
+  cmd->callback([args, action] { *action = [args] { return run_relocalize(*args); }; });
+}
+
+}  // namespace arbor::cli

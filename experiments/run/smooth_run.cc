@@ -1,0 +1,184 @@
+// The smoother run pipeline: associations and initial values in, Ceres solve, metrics and result files out.
+#ifdef ARBOR_HAVE_SMOOTHER
+#include "experiments/run/smooth_run.h"
+
+#include <chrono>
+#include <filesystem>
+#include <unordered_map>
+
+#include <fmt/core.h>
+
+#include "core/io/atomic_file.h"
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "core/io/text_reader.h"
+#include "core/io/trajectory_io.h"
+#include "core/metrics/run_statistics.h"
+#include "core/metrics/trajectory_metrics.h"
+#include "experiments/run/fastslam_run.h"
+#include "variants/smoothing/g2o_writer.h"
+#include "variants/smoothing/isam_graph.h"
+
+namespace arbor {
+namespace {
+
+using Json = nlohmann::json;
+
+Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+
+SmootherInitialGuess read_initial_guess(const std::string& dir, bool with_map) {
+  SmootherInitialGuess guess;
+  for (const TimedPose& p : read_tum(dir + "/trajectory.tum")) guess.trajectory.push_back({p.time_s, p.pose});
+  std::stable_sort(guess.trajectory.begin(), guess.trajectory.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Landmark ids are the run's own, so its map only seeds landmarks when the associations come from it too.
+  if (with_map)
+    for (const Landmark& l : read_map_csv(dir + "/map.csv")) guess.landmarks[l.id] = l.mean;
+  return guess;
+}
+
+Json summary_json(const SmootherSummary& s) {
+  return {{"solve_time_s", s.solve_time_s},     {"solve_cpu_s", s.solve_cpu_s},
+          {"build_time_s", s.build_time_s},
+          {"iterations", s.iterations},         {"initial_cost", s.initial_cost},
+          {"final_cost", s.final_cost},         {"termination", s.termination},
+          {"solution_usable", s.usable},        {"gradient_max_norm", s.gradient_max_norm},
+          {"linear_solver_used", s.linear_solver}, {"poses", s.poses},
+          {"landmarks", s.landmarks},           {"factors", s.factors},
+          {"residuals", s.residuals},           {"parameters", s.parameters}};
+}
+
+}  // namespace
+
+SmootherAssociations read_association_decisions(const std::string& dir, const Scenario& scenario) {
+  const std::string path = dir + "/associations.csv";
+  if (!std::filesystem::exists(path))
+    throw InputError(path, 0, "", "no association decisions here (expected a FastSLAM result directory written by "
+                                  "`arbor run` with associations.csv)");
+  SmootherAssociations a;
+  a.source = path;
+  a.landmark_ids.resize(scenario.steps.size());
+  for (std::size_t k = 0; k < scenario.steps.size(); ++k)
+    a.landmark_ids[k].assign(scenario.steps[k].measurements.size(), kUnassociated);
+  TextReader in(path, ",");
+  if (!in.next() || in.field_count() < 3 || in.field(0) != "step")
+    throw InputError(path, in.line_number(), "header", "expected the header step,measurement,landmark");
+  while (in.next()) {
+    in.expect_fields(3, 3, "associations.csv");
+    const std::int64_t step = in.integer(0, "step"), j = in.integer(1, "measurement"), id = in.integer(2, "landmark");
+    if (step < 0 || step >= static_cast<std::int64_t>(scenario.steps.size()))
+      in.fail("step", fmt::format("step {} is outside the scenario's {} steps", step, scenario.steps.size()));
+    if (j < 0 || j >= static_cast<std::int64_t>(a.landmark_ids[step].size()))
+      in.fail("measurement", fmt::format("step {} has {} measurements, not {}", step, a.landmark_ids[step].size(), j + 1));
+    if (id < -1) in.fail("landmark", fmt::format("landmark id {} (expected >= 0, or -1 for none)", id));
+    a.landmark_ids[step][j] = id;
+  }
+  return a;
+}
+
+SmoothOutput run_smoother(const SmoothConfig& config) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::string why;
+  if (!config.options.validate(&why)) throw InputError("", 0, "options", why);
+  SmoothOutput out;
+  Json& r = out.result;
+  FactorGraph graph;
+  Scenario scenario;
+  std::unordered_map<std::int64_t, std::int32_t> truth_label;  // landmark id -> ground-truth id, where known
+  SmootherOptions options = config.options;
+  if (!config.isam_path.empty()) {
+    graph = read_isam_graph(config.isam_path, options.prior_floor_sigma);
+  } else {
+    scenario = read_scenario(config.scenario_path);
+    SmootherAssociations associations;
+    if (config.associations == "known") {
+      associations = SmootherAssociations::from_truth(scenario);
+      for (const TruthLandmark& t : scenario.truth_landmarks) truth_label[t.id] = t.id;
+    } else {
+      associations = read_association_decisions(config.associations, scenario);
+      for (const Landmark& l : read_map_csv(config.associations + "/map.csv")) truth_label[l.id] = l.truth_label;
+    }
+    SmootherInitialGuess guess;
+    if (!config.init_dir.empty()) {
+      guess = read_initial_guess(config.init_dir, config.init_dir == config.associations);
+      options.warm_start_poses = 0;  // the guess is the starting point
+    }
+    graph = build_factor_graph(scenario, associations, options, config.init_dir.empty() ? nullptr : &guess);
+    r["associations_used"] = associations.associated_count();
+  }
+  if (!config.g2o_path.empty()) write_g2o(graph, config.g2o_path);
+  out.smoother = solve_factor_graph(graph, options);
+  const SmootherResult& sm = out.smoother;
+
+  std::vector<TimedPose> trajectory;
+  for (const SmoothedPose& p : sm.poses) trajectory.push_back({p.time_s, p.pose});
+  std::vector<Landmark> map;
+  for (const SmoothedLandmark& l : sm.landmarks) {
+    Landmark lm;
+    lm.id = static_cast<LandmarkId>(l.id);
+    lm.mean = l.position;
+    lm.cov = l.covariance;
+    const auto label = truth_label.find(l.id);
+    lm.truth_label = label == truth_label.end() ? -1 : label->second;
+    map.push_back(lm);
+  }
+
+  // As `arbor run`: truth poses in the same frame where simulated; a GPS track needs SE(2) alignment.
+  std::vector<TimedPosition> truth = truth_positions(scenario);
+  const bool align = truth.empty() && !scenario.truth_track.empty();
+  if (align) truth = scenario.truth_track;
+  const auto ate = absolute_trajectory_error(trajectory, truth, align);
+  // Also SE(2)-aligned where the frames already agree: without a scan at the known initial pose, the map's
+  // rotation rests on the first odometry reading alone, and that one draw dominates the unaligned error.
+  const auto ate_aligned = align ? ate : absolute_trajectory_error(trajectory, truth, true);
+  const auto ate_dr = config.isam_path.empty() ? absolute_trajectory_error(dead_reckoning(scenario), truth, align)
+                                               : std::nullopt;
+  const auto lm_rmse = landmark_rmse(map, scenario.truth_landmarks, ate ? ate->alignment : Pose2{});
+  const SmootherSummary& s = sm.summary;
+
+  r["config"] = {{"scenario", config.scenario_path},
+                 {"isam", config.isam_path},
+                 {"smoother", "ceres"},
+                 {"associations", config.associations},
+                 {"init", config.init_dir.empty() ? "dead-reckoning" : config.init_dir},
+                 {"loss", std::string(to_string(options.loss))},
+                 {"loss_scale", options.loss_scale},
+                 {"solver", std::string(to_string(options.linear_solver))},
+                 {"schur_landmarks_first", options.schur_landmarks_first},
+                 {"warm_start_poses", options.warm_start_poses},
+                 {"warm_start_iterations", options.warm_start_iterations},
+                 {"max_iterations", options.max_iterations},
+                 {"threads", options.threads}};
+  r["config"].update(provenance());
+  r["scenario"] = scenario.metadata;
+  r["ate_rmse_m"] = ate ? Json(ate->rmse_m) : Json(nullptr);
+  r["ate_aligned"] = align;
+  r["ate_aligned_rmse_m"] = ate_aligned ? Json(ate_aligned->rmse_m) : Json(nullptr);
+  r["dead_reckoning_ate_m"] = ate_dr ? Json(ate_dr->rmse_m) : Json(nullptr);
+  r["landmark_rmse_m"] = optional_number(lm_rmse);
+  r["nees_mean"] = nullptr;  // no pose marginals are computed
+  // The smoother takes its associations as given; their quality is scored in the run they came from.
+  r["assoc_precision"] = nullptr;
+  r["assoc_recall"] = nullptr;
+  r["assoc_f1"] = nullptr;
+  r["landmarks"] = map.size();
+  r["true_landmarks"] = scenario.truth_landmarks.size();
+  r["steps"] = config.isam_path.empty() ? scenario.steps.size() : sm.poses.size() - 1;
+  r["step_time_median_s"] = nullptr;  // a batch solve has no per-step time
+  r["step_time_p95_s"] = nullptr;
+  r.update(summary_json(s));
+  r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  r["peak_rss_bytes"] = peak_rss_bytes();
+
+  if (!config.out_dir.empty()) {
+    std::filesystem::create_directories(config.out_dir);
+    const std::string dir = config.out_dir + "/";
+    write_tum(dir + "trajectory.tum", trajectory);
+    write_map_csv(dir + "map.csv", map);
+    write_file_atomically(dir + "result.json", r.dump(2) + "\n");  // last: its presence means complete
+  }
+  return out;
+}
+
+}  // namespace arbor
+#endif  // ARBOR_HAVE_SMOOTHER

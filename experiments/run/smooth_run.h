@@ -1,0 +1,44 @@
+// One smoother run to its result files (DESIGN.md §9, `arbor smooth`): DIR/result.json (the fields of
+// `arbor run` plus solve_time_s, iterations, initial_cost, final_cost, termination), DIR/trajectory.tum and
+// DIR/map.csv; optionally the problem as a g2o file.
+#ifndef ARBOR_EXPERIMENTS_RUN_SMOOTH_RUN_H_
+#define ARBOR_EXPERIMENTS_RUN_SMOOTH_RUN_H_
+
+#ifdef ARBOR_HAVE_SMOOTHER
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/scenario.h"
+#include "variants/smoothing/smoother.h"
+
+namespace arbor {
+
+struct SmoothConfig {
+  std::string scenario_path;       // a scenario file, or
+  std::string isam_path;           // a pre-associated iSAM/GTSAM file (then no scenario)
+  std::string associations = "known";  // "known" (ground-truth ids) or a FastSLAM result directory
+  std::string init_dir;            // optional: initial values from a FastSLAM result (trajectory.tum, map.csv)
+  std::string g2o_path;            // optional: export the problem
+  SmootherOptions options;
+  std::string out_dir;             // empty: compute but write nothing
+};
+
+struct SmoothOutput {
+  nlohmann::json result;
+  SmootherResult smoother;
+};
+
+// Throws InputError for unreadable inputs and for associations that do not fit the scenario.
+SmoothOutput run_smoother(const SmoothConfig& config);
+
+// Association decisions of a FastSLAM result directory: DIR/associations.csv with the header
+// "step,measurement,landmark" and one row per measurement (landmark -1: new or spurious, left out), plus the
+// best particle's map (DIR/map.csv) for the landmarks' truth labels. Measurements without a row are left out.
+SmootherAssociations read_association_decisions(const std::string& dir, const Scenario& scenario);
+
+}  // namespace arbor
+
+#endif  // ARBOR_HAVE_SMOOTHER
+#endif  // ARBOR_EXPERIMENTS_RUN_SMOOTH_RUN_H_

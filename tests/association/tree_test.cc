@@ -1,0 +1,149 @@
+// Interpretation trees: the locality hypothesis bound, equality with the unrestricted tree when every feature
+// is in every locality, pose-free correctness on generated problems, and the closed-form alignment.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "tests/association/test_problems.h"
+#include "variants/association/interpretation_tree.h"
+#include "variants/association/joint_compatibility.h"
+#include "variants/association/locality_tree.h"
+#include "variants/association/problem_generator.h"
+#include "variants/association/rigid_alignment.h"
+
+namespace arbor {
+namespace {
+
+template <class S>
+AssociationResult run(const AssociationProblem& p, AssociationOptions o = {}) {
+  const S s(o);
+  typename S::Scratch scratch;
+  AssociationResult r;
+  s.solve(p, scratch, r);
+  return r;
+}
+
+// Largest locality among the candidates, counting only ids that are candidates (the search's c).
+int max_locality(const AssociationProblem& p) {
+  int c = 0;
+  for (const auto& cand : p.candidates) {
+    int k = 0;
+    for (LandmarkId id : cand.locality)
+      k += std::any_of(p.candidates.begin(), p.candidates.end(), [&](const auto& o) { return o.id == id && id != cand.id; });
+    c = std::max(c, k);
+  }
+  return c;
+}
+
+TEST(LocalityTree, BoundFormula) {
+  EXPECT_DOUBLE_EQ(association::locality_hypothesis_bound(10, 1, 3), 11.0);          // n + 1
+  EXPECT_DOUBLE_EQ(association::locality_hypothesis_bound(10, 2, 3), 10 * 5 + 1.0);  // n (c + 2) + 1
+  EXPECT_DOUBLE_EQ(association::locality_hypothesis_bound(4, 3, 4), 125.0);          // c = n: (n + 1)^m
+}
+
+TEST(LocalityTree, NeverExceedsItsHypothesisBound) {
+  int searched = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    ProblemGeneratorOptions g;
+    g.seed = seed;
+    g.landmarks = 15 + static_cast<int>(seed % 4) * 15;
+    g.observations = 2 + static_cast<int>(seed % 5);
+    g.clutter = static_cast<int>(seed % 3);
+    g.locality = 1 + static_cast<int>(seed % 6);
+    g.density = 0.2;  // crowded: the constraints prune little, so the bound is what holds the count
+    const GeneratedProblem gen = generate_association_problem(g);
+    const AssociationResult r = run<LocalityTree>(gen.problem);
+    const int n = static_cast<int>(gen.problem.candidates.size());
+    const int m = static_cast<int>(gen.problem.measurements.size());
+    const double bound = association::locality_hypothesis_bound(n, m, max_locality(gen.problem));
+    EXPECT_LE(static_cast<double>(r.stats.hypotheses), bound) << "seed " << seed;
+    EXPECT_FALSE(r.stats.budget_exhausted);
+    searched += r.stats.hypotheses > n;
+  }
+  EXPECT_GT(searched, 10);  // most searches went past the first level
+}
+
+// With every other feature in every locality set (c = n - 1) the restriction removes nothing: the locality
+// tree gives the unrestricted tree's answer. (It may visit fewer hypotheses: its bound also counts the levels
+// where an open feature still passes the constraints, which the classic unrestricted tree does not.)
+TEST(LocalityTree, WithFullLocalitiesEqualsTheUnrestrictedTree) {
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    ProblemGeneratorOptions g;
+    g.seed = seed;
+    g.landmarks = LocalitySet::kCapacity + 1;
+    g.observations = 3 + static_cast<int>(seed % 4);
+    g.clutter = static_cast<int>(seed % 3);
+    g.locality = LocalitySet::kCapacity;
+    GeneratedProblem gen = generate_association_problem(g);
+    ASSERT_EQ(max_locality(gen.problem), g.landmarks - 1);
+    const AssociationResult local = run<LocalityTree>(gen.problem);
+    const AssociationResult full = run<InterpretationTree>(gen.problem);
+    EXPECT_EQ(local.pairing, full.pairing) << "seed " << seed;
+    EXPECT_LE(local.stats.hypotheses, full.stats.hypotheses) << "seed " << seed;
+  }
+}
+
+// Pose-free: the prior is made useless (a kidnapped robot) and the trees must still find the true pairing.
+TEST(LocalityTree, FindsTheTruePairingWithoutAPosePrior) {
+  int good = 0, total = 0;
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    ProblemGeneratorOptions g;
+    g.seed = seed;
+    g.landmarks = 150;
+    g.observations = 8;
+    g.clutter = 2;
+    g.pose_sigma = Vec3(5.0, 5.0, 1.0);  // the prior is far off; the tree never reads it
+    const GeneratedProblem gen = generate_association_problem(g);
+    LocalityTree tree{AssociationOptions{}};
+    LocalityTree::Scratch scratch;
+    AssociationResult r;
+    Pose2 pose;
+    const bool verified = tree.solve_with_pose(gen.problem, scratch, r, &pose);
+    ++total;
+    int correct = 0, wrong = 0;
+    for (std::size_t i = 0; i < r.pairing.size(); ++i) {
+      if (r.pairing[i] >= 0) (r.pairing[i] == gen.truth[i] ? correct : wrong) += 1;
+    }
+    if (verified && wrong <= 1 && correct >= 6 && (pose.position() - gen.true_pose.position()).norm() < 1.0) ++good;
+  }
+  EXPECT_GE(good, total * 8 / 10);
+}
+
+TEST(LocalityTree, AnswerDoesNotDependOnObservationOrder) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    ProblemGeneratorOptions g;
+    g.seed = seed;
+    g.landmarks = 100;
+    g.observations = 7;
+    g.clutter = 2;
+    const GeneratedProblem gen = generate_association_problem(g);
+    const AssociationResult r = run<LocalityTree>(gen.problem);
+    AssociationProblem shuffled = gen.problem;
+    std::vector<int> perm(shuffled.measurements.size());
+    std::iota(perm.begin(), perm.end(), 0);
+    std::shuffle(perm.begin(), perm.end(), std::mt19937(static_cast<unsigned>(seed)));
+    for (std::size_t k = 0; k < perm.size(); ++k) shuffled.measurements[k] = gen.problem.measurements[perm[k]];
+    const AssociationResult r2 = run<LocalityTree>(shuffled);
+    for (std::size_t k = 0; k < perm.size(); ++k) EXPECT_EQ(r2.pairing[k], r.pairing[perm[k]]) << "seed " << seed;
+    EXPECT_EQ(r2.stats.hypotheses, r.stats.hypotheses);
+  }
+}
+
+TEST(RigidAlignment, RecoversAKnownPose) {
+  const Pose2 truth{3.0, -2.0, 2.5};
+  std::vector<Vec2> p{{1.0, 0.0}, {0.0, 4.0}, {-2.0, 1.0}, {5.0, 5.0}};
+  std::vector<Vec2> q;
+  for (const Vec2& v : p) q.push_back(truth.transform(v));
+  Pose2 pose;
+  ASSERT_TRUE(association::align_rigid_2d(p, q, &pose));
+  EXPECT_NEAR(pose.x, truth.x, 1e-12);
+  EXPECT_NEAR(pose.y, truth.y, 1e-12);
+  EXPECT_NEAR(pose.theta, truth.theta, 1e-12);
+  EXPECT_FALSE(association::align_rigid_2d(std::vector<Vec2>{{1.0, 1.0}}, std::vector<Vec2>{{0.0, 0.0}}, &pose));
+}
+
+}  // namespace
+}  // namespace arbor

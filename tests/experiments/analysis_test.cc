@@ -1,0 +1,65 @@
+// The analysis scripts run with the system Python on the committed results fixture and produce their files.
+// Skipped (with the reason) where /usr/bin/python3 lacks numpy, pandas or matplotlib.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/experiments/sweep_test_util.h"
+
+namespace arbor {
+namespace {
+
+using testing_util::read_text;
+using testing_util::run_to_end;
+using testing_util::ScratchDir;
+
+constexpr const char* kPython = "/usr/bin/python3";
+const std::string kSource = ARBOR_SOURCE_DIR;
+
+class AnalysisScripts : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ScratchDir probe("python_probe");
+    if (!std::filesystem::exists(kPython) ||
+        run_to_end({kPython, "-c", "import numpy, pandas, matplotlib"}, probe / "probe.log") != 0)
+      GTEST_SKIP() << kPython << " cannot import numpy, pandas and matplotlib (Debian: apt install python3-pandas "
+                   << "python3-matplotlib): " << read_text(probe / "probe.log");
+  }
+  std::string fixture() const { return kSource + "/tests/data/results_fixture"; }
+};
+
+TEST_F(AnalysisScripts, ReportBuildsEveryFigureAndTableFromTheFixture) {
+  ScratchDir out("report");
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/report", fixture(), "--out", out.str()}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  const std::string report = read_text(out / "report.md");
+  for (const char* figure : {"complexity_step_time.png", "accuracy_vs_particles.png", "association_vs_clutter.png",
+                             "hypotheses_vs_map_size.png", "thread_scaling.png", "trajectory_best.png"}) {
+    EXPECT_GT(std::filesystem::file_size(out / figure), 1000u) << figure;
+    EXPECT_NE(report.find(std::string("(") + figure + ")"), std::string::npos) << figure << " not linked";
+  }
+  for (const char* section : {"## FastSLAM vs smoother", "## Runs that did not finish", "synthetic failure"})
+    EXPECT_NE(report.find(section), std::string::npos) << section;
+  // The fixture's slopes are known by construction: naive ~1, tree ~0 (see make_fixture.py).
+  EXPECT_NE(read_text(out / "log.txt").find("naive: log-log slope 0.9"), std::string::npos) << read_text(out / "log.txt");
+  // The half-written last row of the fixture is not a row.
+  EXPECT_EQ(report.find("half-written"), std::string::npos);
+}
+
+// The report imports every figure module; the scripts' own command line is one shared wrapper
+// (arbor_results.main_for), so one script and the run-directory plot stand for the rest (Python start-up with
+// matplotlib costs seconds per process on the 2-core CI machine).
+TEST_F(AnalysisScripts, FigureScriptsRunOnTheirOwn) {
+  ScratchDir out("figures");
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/accuracy.py", fixture(), "--out", out.str()}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  EXPECT_GT(std::filesystem::file_size(out / "accuracy_vs_particles.png"), 1000u);
+  const std::string run = fixture() + "/runs/uniform-n100-t300-c0__smoother-s1-t1";
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/trajectory.py", run, "--out", out / "run.png"}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  EXPECT_GT(std::filesystem::file_size(out / "run.png"), 1000u);
+}
+
+}  // namespace
+}  // namespace arbor

@@ -1,0 +1,177 @@
+// `arbor sweep` and `arbor merge` end to end with the real binary on tiny simulated runs: a sweep killed
+// with SIGKILL and restarted records exactly the rows of an uninterrupted one; three merged shards equal
+// the unsharded sweep; a malformed spec fails before any run starts.
+#include <signal.h>
+
+#include <chrono>
+#include <map>
+#include <set>
+#include <thread>
+
+#include <fmt/core.h>
+#include <gtest/gtest.h>
+
+#include "experiments/sweep/results_log.h"
+#include "tests/experiments/sweep_test_util.h"
+
+namespace arbor {
+namespace {
+
+using testing_util::arbor_binary;
+using testing_util::read_text;
+using testing_util::run_to_end;
+using testing_util::ScratchDir;
+using testing_util::write_text;
+
+// 12 tiny runs (a few milliseconds of filtering each; the process start dominates).
+constexpr const char* kTinySpec = R"([sweep]
+name = "tiny"
+metrics = ["ate_rmse_m", "landmarks", "steps"]
+[scenarios]
+world = "uniform"
+landmarks = 30
+steps = 25
+clutter = 0.5
+[grid]
+filter = "fastslam1"
+map = "naive"
+assoc = "known"
+particles = [3, 5, 8]
+seed = { from = 1, to = 4 }
+threads = 1
+)";
+constexpr std::size_t kTinyRuns = 12;
+
+// The identity of a row: its parameters and status (not timings, hosts or finish times).
+std::string tuple_of(const ResultRow& row) {
+  std::string out;
+  for (const char* c : {"key", "status", "dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed",
+                        "filter", "map", "assoc", "particles", "seed", "threads"})
+    out += std::string(c) + "=" + (row.contains(c) ? row[c].dump() : "?") + ";";
+  return out;
+}
+
+// Rows of DIR as a multiset of tuples, after checking the files are whole: every line complete and parsed,
+// the CSV holding the same number of rows as the JSONL.
+std::multiset<std::string> rows_of(const std::string& dir) {
+  const std::string jsonl = read_text(dir + "/results.jsonl");
+  EXPECT_TRUE(jsonl.empty() || jsonl.back() == '\n') << "half row at the end of " << dir;
+  const auto rows = read_result_rows(dir + "/results.jsonl");
+  std::multiset<std::string> tuples;
+  for (const auto& r : rows) tuples.insert(tuple_of(r));
+  const std::string csv = read_text(dir + "/results.csv");
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), rows.size() + 1) << "CSV rows != JSONL rows";
+  return tuples;
+}
+
+std::size_t complete_lines(const std::string& path) {
+  const std::string text = read_text(path);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+class SweepEndToEnd : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    binary_ = arbor_binary();
+    if (binary_.empty()) return;
+    scratch_ = new ScratchDir("sweep_e2e");
+    write_text(*scratch_ / "tiny.toml", kTinySpec);
+    reference_rc_ = run_to_end({binary_, "sweep", *scratch_ / "tiny.toml", "--out", *scratch_ / "reference", "--jobs", "2"},
+                               *scratch_ / "reference.log");
+  }
+  static void TearDownTestSuite() {
+    delete scratch_;
+    scratch_ = nullptr;
+  }
+  void SetUp() override {
+    if (binary_.empty()) GTEST_SKIP() << "ARBOR_BINARY_DIR/bin/arbor not found (run through ctest after building 'arbor')";
+    ASSERT_EQ(reference_rc_, 0) << read_text(*scratch_ / "reference.log");
+  }
+  std::string spec() const { return *scratch_ / "tiny.toml"; }
+  std::multiset<std::string> reference() const { return rows_of(*scratch_ / "reference"); }
+
+  static inline std::string binary_;
+  static inline ScratchDir* scratch_ = nullptr;
+  static inline int reference_rc_ = -1;
+};
+
+TEST_F(SweepEndToEnd, UninterruptedSweepRecordsEveryRunOnceAndOk) {
+  const auto rows = reference();
+  EXPECT_EQ(rows.size(), kTinyRuns);
+  EXPECT_EQ(std::set<std::string>(rows.begin(), rows.end()).size(), kTinyRuns);
+  for (const auto& r : rows) EXPECT_NE(r.find("status=\"ok\""), std::string::npos) << r;
+  // Rerunning the finished sweep runs nothing and changes nothing.
+  const std::string before = read_text(*scratch_ / "reference/results.jsonl");
+  ASSERT_EQ(run_to_end({binary_, "sweep", spec(), "--out", *scratch_ / "reference"}, *scratch_ / "again.log"), 0);
+  EXPECT_EQ(read_text(*scratch_ / "reference/results.jsonl"), before);
+}
+
+TEST_F(SweepEndToEnd, KilledSweepResumesToExactlyTheUninterruptedRows) {
+  ScratchDir dir("killed");
+  const std::string out = dir / "out";
+  const pid_t pid = start_child({binary_, "sweep", spec(), "--out", out, "--jobs", "2"}, dir / "first.log");
+  // Kill as soon as the first row lands: runs are in flight, others not yet started.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (complete_lines(out + "/results.jsonl") < 1 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGKILL);
+  const ChildExit killed = wait_child(pid);
+  EXPECT_EQ(killed.signal, SIGKILL) << "the sweep finished before it could be killed";
+  const std::size_t rows_at_kill = complete_lines(out + "/results.jsonl");
+  EXPECT_GE(rows_at_kill, 1u);
+  EXPECT_LT(rows_at_kill, kTinyRuns) << "the kill did not land mid-sweep";
+  // Power loss in the middle of an append would leave a row without its newline: add one by hand.
+  {
+    std::ofstream jsonl(out + "/results.jsonl", std::ios::app);
+    jsonl << "{\"key\":\"uniform-n30-t25-c0.5__fastslam1-naive-known-m3-s1-t1\",\"stat";
+  }
+  ASSERT_EQ(run_to_end({binary_, "sweep", spec(), "--out", out, "--jobs", "2"}, dir / "second.log"), 0)
+      << read_text(dir / "second.log");
+  EXPECT_EQ(rows_of(out), reference());
+  EXPECT_NE(read_text(dir / "second.log").find(fmt::format("{} already recorded", rows_at_kill)), std::string::npos)
+      << read_text(dir / "second.log");
+}
+
+TEST_F(SweepEndToEnd, ThreeMergedShardsEqualTheUnshardedSweep) {
+  ScratchDir dir("shards");
+  std::vector<std::string> merge{binary_, "merge"};
+  std::size_t total = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::string out = dir / ("shard" + std::to_string(i));
+    ASSERT_EQ(run_to_end({binary_, "sweep", spec(), "--out", out, "--shard", fmt::format("{}/3", i)}, dir / "shard.log"), 0)
+        << read_text(dir / "shard.log");
+    total += rows_of(out).size();
+    merge.push_back(out);
+  }
+  EXPECT_EQ(total, kTinyRuns);
+  merge.push_back(dir / "shard0");  // a directory given twice: its rows are de-duplicated by key
+  merge.insert(merge.end(), {"--out", dir / "merged"});
+  ASSERT_EQ(run_to_end(merge, dir / "merge.log"), 0) << read_text(dir / "merge.log");
+  EXPECT_EQ(rows_of(dir / "merged"), reference());
+}
+
+TEST_F(SweepEndToEnd, MergeRefusesShardsOfDifferentSpecs) {
+  ScratchDir dir("mismatch");
+  std::string other = kTinySpec;
+  other.replace(other.find("particles = [3, 5, 8]"), 21, "particles = [3]");
+  write_text(dir / "other.toml", other);
+  ASSERT_EQ(run_to_end({binary_, "sweep", dir / "other.toml", "--out", dir / "other", "--shard", "1/3"}, dir / "o.log"), 0);
+  EXPECT_EQ(run_to_end({binary_, "merge", *scratch_ / "reference", dir / "other", "--out", dir / "merged"}, dir / "m.log"), 2);
+  EXPECT_NE(read_text(dir / "m.log").find("another spec"), std::string::npos) << read_text(dir / "m.log");
+  // Resuming into a directory of another sweep is refused the same way.
+  EXPECT_EQ(run_to_end({binary_, "sweep", dir / "other.toml", "--out", *scratch_ / "reference"}, dir / "r.log"), 2);
+}
+
+TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
+  ScratchDir dir("malformed");
+  std::string bad = kTinySpec;
+  bad.replace(bad.find("map = \"naive\""), 13, "map = \"splay\"");
+  write_text(dir / "bad.toml", bad);
+  EXPECT_EQ(run_to_end({binary_, "sweep", dir / "bad.toml", "--out", dir / "out"}, dir / "bad.log"), 2);
+  const std::string log = read_text(dir / "bad.log");
+  EXPECT_NE(log.find("bad.toml:11: field 'grid.map'"), std::string::npos) << log;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "something was written before validation finished";
+}
+
+}  // namespace
+}  // namespace arbor

@@ -1,0 +1,56 @@
+// Gated nearest neighbour with and without greedy mutual exclusion.
+#include "variants/association/nearest_neighbor.h"
+
+#include <algorithm>
+
+#include "core/math/chi_square.h"
+
+namespace arbor {
+
+NearestNeighbor::NearestNeighbor(const AssociationOptions& options)
+    : gate_(chi_square_quantile(options.gate_probability, 2)),
+      new_landmark_gate_(chi_square_quantile(options.new_landmark_probability, 2)) {}
+
+NearestNeighborNoExclusion::NearestNeighborNoExclusion(const AssociationOptions& options)
+    : gate_(chi_square_quantile(options.gate_probability, 2)),
+      new_landmark_gate_(chi_square_quantile(options.new_landmark_probability, 2)) {}
+
+void solve_nearest_neighbor(const AssociationProblem& problem, double gate, double new_landmark_gate,
+                            bool exclusive, NearestNeighborScratch& scratch, AssociationResult& result) {
+  using association::GatedPair;
+  const int m = static_cast<int>(problem.measurements.size());
+  result.stats = {};
+  result.pairing.assign(m, association::kUnassigned);
+  association::gate_individually(problem, gate, new_landmark_gate, &scratch.gating, &result.stats);
+  auto& pairs = scratch.gating.pairs;
+  const auto id_of = [&](const GatedPair& p) { return problem.candidates[p.candidate].id; };
+  if (!exclusive) {
+    for (int i = 0; i < m; ++i) {
+      const GatedPair* best = nullptr;
+      for (int k = scratch.gating.first[i]; k < scratch.gating.first[i + 1]; ++k) {
+        const GatedPair& p = pairs[k];
+        if (!best || p.d2 < best->d2 || (p.d2 == best->d2 && id_of(p) < id_of(*best))) best = &p;
+      }
+      if (best) result.pairing[i] = id_of(*best);
+    }
+  } else {
+    association::canonical_measurement_order(problem, &scratch.order);
+    scratch.rank.resize(m);
+    for (int k = 0; k < m; ++k) scratch.rank[scratch.order[k]] = k;
+    std::sort(pairs.begin(), pairs.end(), [&](const GatedPair& a, const GatedPair& b) {
+      if (a.d2 != b.d2) return a.d2 < b.d2;
+      if (id_of(a) != id_of(b)) return id_of(a) < id_of(b);
+      return scratch.rank[a.measurement] < scratch.rank[b.measurement];
+    });
+    scratch.taken.assign(problem.candidates.size(), 0);
+    for (const GatedPair& p : pairs) {
+      if (result.pairing[p.measurement] != association::kUnassigned || scratch.taken[p.candidate]) continue;
+      result.pairing[p.measurement] = id_of(p);
+      scratch.taken[p.candidate] = 1;
+    }
+  }
+  result.stats.hypotheses = 1;
+  association::finish_unpaired(scratch.gating.near_any, &result.pairing);
+}
+
+}  // namespace arbor

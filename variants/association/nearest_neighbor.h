@@ -1,0 +1,66 @@
+// Nearest-neighbour association (DESIGN.md §4): each measurement takes its maximum-likelihood candidate inside
+// a chi-square gate (2 dof). NearestNeighbor enforces mutual exclusion greedily over all gated pairs;
+// NearestNeighborNoExclusion lets several measurements take the same landmark (the textbook gated NN).
+#ifndef ARBOR_VARIANTS_ASSOCIATION_NEAREST_NEIGHBOR_H_
+#define ARBOR_VARIANTS_ASSOCIATION_NEAREST_NEIGHBOR_H_
+
+#include <string_view>
+#include <vector>
+
+#include "core/association/association_problem.h"
+#include "variants/association/association_common.h"
+
+namespace arbor {
+
+struct NearestNeighborScratch {
+  association::IndividualGating gating;
+  std::vector<int> order;  // canonical measurement order
+  std::vector<int> rank;   // rank[i]: position of measurement i in that order
+  std::vector<char> taken;
+};
+
+// Runs NN with or without mutual exclusion; gates are chi-square thresholds (2 dof).
+void solve_nearest_neighbor(const AssociationProblem& problem, double gate, double new_landmark_gate,
+                            bool exclusive, NearestNeighborScratch& scratch, AssociationResult& result);
+
+// Mutual exclusion resolved greedily: all gated pairs sorted by (Mahalanobis distance, landmark id, the
+// measurement's canonical rank) and accepted when neither side is taken yet, so the answer does not depend on
+// the order of the input. Greedy, not optimal (that is what JCBB is for).
+class NearestNeighbor {
+ public:
+  using Scratch = NearestNeighborScratch;
+  static constexpr std::string_view kName = "nn";
+  static constexpr bool kUsesGroundTruth = false;
+
+  explicit NearestNeighbor(const AssociationOptions& options);
+  void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
+    solve_nearest_neighbor(problem, gate_, new_landmark_gate_, true, scratch, result);
+  }
+
+ private:
+  double gate_;
+  double new_landmark_gate_;
+};
+
+class NearestNeighborNoExclusion {
+ public:
+  using Scratch = NearestNeighborScratch;
+  static constexpr std::string_view kName = "nn-independent";
+  static constexpr bool kUsesGroundTruth = false;
+
+  explicit NearestNeighborNoExclusion(const AssociationOptions& options);
+  void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
+    solve_nearest_neighbor(problem, gate_, new_landmark_gate_, false, scratch, result);
+  }
+
+ private:
+  double gate_;
+  double new_landmark_gate_;
+};
+
+static_assert(AssociationStrategy<NearestNeighbor>);
+static_assert(AssociationStrategy<NearestNeighborNoExclusion>);
+
+}  // namespace arbor
+
+#endif  // ARBOR_VARIANTS_ASSOCIATION_NEAREST_NEIGHBOR_H_

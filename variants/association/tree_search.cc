@@ -1,0 +1,356 @@
+// Interpretation-tree search with unary (signature) and binary (pairwise distance) constraints, an optional
+// locality restriction, pose verification of the best hypotheses and a gated completion.
+#include "variants/association/tree_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/math/chi_square.h"
+#include "core/models/range_bearing_model.h"
+#include "variants/association/rigid_alignment.h"
+
+namespace arbor::association {
+namespace {
+
+// Variance floor for the distance constraint [m^2]: keeps exact (noise-free) problems well posed.
+constexpr double kMinDistanceVariance = 1e-12;
+
+class TreeSearch {
+ public:
+  TreeSearch(const AssociationProblem& problem, const TreeSettings& settings, TreeScratch& s,
+             AssociationStats* stats)
+      : p_(problem), set_(settings), s_(s), stats_(stats), m_(static_cast<int>(problem.measurements.size())),
+        n_(static_cast<int>(problem.candidates.size())),
+        signatures_(std::isfinite(problem.signature_sigma) && problem.signature_sigma > 0.0),
+        joint_(problem.joint_covariance.size() > 0) {}
+
+  void prepare() {
+    canonical_measurement_order(p_, &s_.order);
+    s_.point.resize(m_);
+    s_.point_cov.resize(m_);
+    const Pose2 origin;
+    for (int k = 0; k < m_; ++k) {
+      const Vec2& z = p_.measurements[s_.order[k]].z;
+      Mat2 J;
+      s_.point[k] = range_bearing_inverse(origin, z, &J);
+      s_.point_cov[k] = J * p_.R * J.transpose();
+    }
+    if (joint_) {
+      s_.jacobian.resize(n_);
+      for (int j = 0; j < n_; ++j) range_bearing_inverse(origin, p_.candidates[j].z_hat, &s_.jacobian[j]);
+    }
+    s_.used.assign(n_, 0);
+    s_.current.assign(m_, -1);
+    s_.paired_level.assign(m_, -1);
+    s_.ranked.clear();
+    s_.ranked_pairings.clear();
+    s_.ranked_pose.clear();
+    if (!set_.use_locality) return;
+    // Locality sets hold ids; the search needs candidate indices (candidates are sorted by id).
+    s_.loc_begin.assign(n_ + 1, 0);
+    s_.loc.clear();
+    for (int j = 0; j < n_; ++j) {
+      s_.loc_begin[j] = static_cast<int>(s_.loc.size());
+      for (LandmarkId id : p_.candidates[j].locality) {
+        const int g = index_of(id);
+        if (g >= 0 && g != j) s_.loc.push_back(g);
+      }
+    }
+    s_.loc_begin[n_] = static_cast<int>(s_.loc.size());
+    s_.allowed.resize(m_ + 1);
+  }
+
+  void search(int k, int depth) {
+    if (k == m_) {
+      record(depth);
+      return;
+    }
+    const int left = m_ - k - 1;
+    if (!can_enter(depth + optimistic_extra(k, depth))) return;
+    if (can_enter(depth + 1 + left)) {
+      if (!set_.use_locality || depth == 0) {
+        for (int g = 0; g < n_ && !stats_->budget_exhausted; ++g) branch(k, depth, g);
+      } else {
+        // Copy: allowed[depth] is stable while deeper levels rewrite allowed[depth + 1 ..].
+        for (std::size_t e = 0; e < s_.allowed[depth].size() && !stats_->budget_exhausted; ++e)
+          branch(k, depth, s_.allowed[depth][e]);
+      }
+      if (stats_->budget_exhausted) return;
+    }
+    if (can_enter(depth + left)) search(k + 1, depth);
+  }
+
+  // Verifies the ranked hypotheses in order; the first that passes is completed and written to result.
+  bool finish(AssociationResult& result, Pose2* pose_out) {
+    result.pairing.assign(m_, kUnassigned);
+    if (s_.ranked.empty()) {
+      // No verified pose: classify the unpaired measurements with the prior's predictions.
+      gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+      finish_unpaired(s_.gating.near_any, &result.pairing);
+      return false;
+    }
+    // Each verified hypothesis is completed with its pose; the one whose pose explains the most measurements
+    // wins (ties: rank order). A wrong pose that happens to fit a few features explains little else.
+    std::vector<int> accepted;
+    Pose2 pose;
+    int best_count = -1;
+    std::vector<char> near_any;
+    for (std::size_t h = 0; h < s_.ranked.size(); ++h) {
+      std::vector<int> candidate = s_.ranked[h];
+      Pose2 candidate_pose = s_.ranked_pose[h];
+      complete(&candidate, &candidate_pose);
+      const int count = static_cast<int>(std::count_if(candidate.begin(), candidate.end(), [](int j) { return j >= 0; }));
+      if (count > best_count) {
+        best_count = count;
+        accepted = std::move(candidate);
+        pose = candidate_pose;
+        near_any = s_.gating.near_any;
+      }
+    }
+    s_.gating.near_any = std::move(near_any);
+    for (int k = 0; k < m_; ++k)
+      if (accepted[k] >= 0) result.pairing[s_.order[k]] = p_.candidates[accepted[k]].id;
+    finish_unpaired(s_.gating.near_any, &result.pairing);
+    if (pose_out) *pose_out = pose;
+    return true;
+  }
+
+ private:
+  int index_of(LandmarkId id) const {
+    const auto it = std::lower_bound(p_.candidates.begin(), p_.candidates.end(), id,
+                                     [](const AssociationCandidate& c, LandmarkId v) { return c.id < v; });
+    return it != p_.candidates.end() && it->id == id ? static_cast<int>(it - p_.candidates.begin()) : -1;
+  }
+
+  // An upper bound on the pairings levels k.. can still add. In the locality search (after the first
+  // pairing) only the open features can pair, and only at levels where one of them passes the constraints
+  // against the pairings so far; without it the bound degenerates to "every level left", which makes the
+  // search exponential in m through the '*' branches alone.
+  int optimistic_extra(int k, int depth) {
+    const int left = m_ - k;
+    if (!set_.use_locality || depth == 0) return std::min(left, n_ - depth);
+    const std::vector<int>& open = s_.allowed[depth];
+    const int limit = std::min(left, static_cast<int>(open.size()));
+    int levels = 0;
+    for (int l = k; l < m_ && levels < limit; ++l) {
+      for (int g : open) {
+        if (s_.used[g] || !passes(l, depth, g)) continue;
+        ++levels;
+        break;
+      }
+    }
+    return levels;
+  }
+
+  // Unary and binary constraints of candidate g at level k against the `depth` pairings so far.
+  bool passes(int k, int depth, int g) {
+    ++stats_->tests;
+    if (!unary(k, g)) return false;
+    for (int t = 0; t < depth; ++t) {
+      const int ka = s_.paired_level[t];
+      ++stats_->tests;
+      if (!binary(ka, s_.current[ka], k, g)) return false;
+    }
+    return true;
+  }
+
+  bool can_enter(int pairings) const {
+    if (pairings < kTreeMinPairings) return false;
+    return static_cast<int>(s_.ranked.size()) < kTreeHypothesesVerified || pairings > s_.ranked_pairings.back();
+  }
+
+  // Unary constraint: signatures agree within the gate (when the sensor gives them).
+  bool unary(int k, int g) const {
+    if (!signatures_) return true;
+    const double a = p_.measurements[s_.order[k]].signature, b = p_.candidates[g].signature;
+    if (std::isnan(a) || std::isnan(b)) return true;
+    const double d = a - b;
+    return d * d <= set_.binary_gate * p_.signature_sigma * p_.signature_sigma;
+  }
+
+  // Binary constraint (Grimson): |p_a - p_b| must match |m_f - m_g|. The variance of the difference is the
+  // sum of both point covariances projected on the measured direction and both landmark covariances
+  // projected on the map direction (first order).
+  bool binary(int ka, int f, int kb, int g) const {
+    const Vec2 dp = s_.point[ka] - s_.point[kb];
+    const Vec2 dm = p_.candidates[f].position - p_.candidates[g].position;
+    const double lp = dp.norm(), lm = dm.norm();
+    double var = kMinDistanceVariance;
+    if (lp > 0.0) {
+      const Vec2 u = dp / lp;
+      var += u.dot((s_.point_cov[ka] + s_.point_cov[kb]) * u);
+    }
+    if (lm > 0.0) {
+      const Vec2 v = dm / lm;
+      Mat2 cov = p_.candidates[f].position_cov + p_.candidates[g].position_cov;
+      if (joint_) {
+        // Positions recovered from predictions share the pose error, which cancels in their difference:
+        // Cov(m_f - m_g) = Sigma_f + Sigma_g - X_fg - X_fg^T, X_fg = J_f C_fg J_g^T.
+        const Mat2 x = s_.jacobian[f] * p_.joint_covariance.block<2, 2>(2 * f, 2 * g) * s_.jacobian[g].transpose();
+        cov -= x + x.transpose();
+      }
+      var += std::max(v.dot(cov * v), 0.0);
+    }
+    const double d = lp - lm;
+    return d * d <= set_.binary_gate * var;
+  }
+
+  void branch(int k, int depth, int g) {
+    if (s_.used[g] || !passes(k, depth, g)) return;
+    if (stats_->hypotheses >= set_.max_hypotheses) {
+      stats_->budget_exhausted = true;
+      return;
+    }
+    ++stats_->hypotheses;
+    if (set_.use_locality) {
+      // The remaining measurements may pair only with features in the locality of the first paired feature
+      // (the anchor), so the open set never exceeds c features: the bound n((c+1)^m - 1)/c + 1.
+      std::vector<int>& next = s_.allowed[depth + 1];
+      next.clear();
+      const int* begin = s_.loc.data() + s_.loc_begin[g];
+      const int* end = s_.loc.data() + s_.loc_begin[g + 1];
+      // Anchor rule: the open set stays the first paired feature's locality. Intersection rule: it shrinks
+      // to the features covisible with every paired one.
+      if (depth == 0) {
+        next.assign(begin, end);
+      } else if (set_.anchor_only) {
+        next = s_.allowed[depth];
+      } else {
+        for (int h : s_.allowed[depth])
+          if (std::find(begin, end, h) != end) next.push_back(h);
+      }
+    }
+    s_.used[g] = 1;
+    s_.current[k] = g;
+    s_.paired_level[depth] = k;
+    search(k + 1, depth + 1);
+    s_.used[g] = 0;
+    s_.current[k] = -1;
+  }
+
+  // A complete interpretation is verified at once (closed-form pose, joint test), and only verified ones are
+  // ranked: verifying "the best, then the next best" in rank order picks the same hypothesis, and pruning
+  // against verified ones keeps geometric coincidences that fail verification from crowding the ranking.
+  void record(int depth) {
+    Pose2 pose;
+    if (!verify(s_.current, &pose)) return;
+    // Most pairings first; equal counts keep discovery order (deterministic: levels and candidates are
+    // visited in canonical order).
+    auto pos = std::upper_bound(s_.ranked_pairings.begin(), s_.ranked_pairings.end(), depth, std::greater<int>());
+    const auto at = pos - s_.ranked_pairings.begin();
+    s_.ranked_pairings.insert(pos, depth);
+    s_.ranked.insert(s_.ranked.begin() + at, s_.current);
+    s_.ranked_pose.insert(s_.ranked_pose.begin() + at, pose);
+    if (static_cast<int>(s_.ranked.size()) > kTreeHypothesesVerified) {
+      s_.ranked.pop_back();
+      s_.ranked_pose.pop_back();
+      s_.ranked_pairings.pop_back();
+    }
+  }
+
+  // Pose from the pairings (closed form), then the joint test of the world-frame residuals
+  //   r_k = world_T_robot * p_k - m_f,  C_k = R_theta Cov(p_k) R_theta^T + Sigma_f,
+  // against chi2 with 2k - 3 dof (three pose parameters were fitted to the same residuals).
+  bool verify(const std::vector<int>& h, Pose2* pose) {
+    s_.fit_p.clear();
+    s_.fit_q.clear();
+    for (int k = 0; k < m_; ++k) {
+      if (h[k] < 0) continue;
+      s_.fit_p.push_back(s_.point[k]);
+      s_.fit_q.push_back(p_.candidates[h[k]].position);
+    }
+    const int pairs = static_cast<int>(s_.fit_p.size());
+    if (pairs < kTreeMinPairings || !align_rigid_2d(s_.fit_p, s_.fit_q, pose)) return false;
+    const double c = std::cos(pose->theta), s = std::sin(pose->theta);
+    Mat2 rot;
+    rot << c, -s, s, c;
+    double d2 = 0.0;
+    for (int k = 0; k < m_; ++k) {
+      if (h[k] < 0) continue;
+      const Vec2 r = pose->transform(s_.point[k]) - p_.candidates[h[k]].position;
+      Mat2 inverse;
+      if (!invert_spd2(rot * s_.point_cov[k] * rot.transpose() + p_.candidates[h[k]].position_cov, &inverse))
+        return false;
+      d2 += r.dot(inverse * r);
+    }
+    ++stats_->tests;
+    return d2 <= chi_square_quantile(set_.gate_probability, 2 * pairs - 3);
+  }
+
+  // With a verified pose, the measurements the (possibly locality-capped) search left open are gated against
+  // the unused candidates in the world frame and paired greedily by distance; the completed hypothesis is
+  // kept only if it still passes the joint test. The same pass decides NEW vs SPURIOUS for the rest.
+  void complete(std::vector<int>* h, Pose2* pose) {
+    const double c = std::cos(pose->theta), s = std::sin(pose->theta);
+    Mat2 rot;
+    rot << c, -s, s, c;
+    s_.gating.near_any.assign(m_, 0);
+    s_.gating.pairs.clear();
+    std::fill(s_.used.begin(), s_.used.end(), 0);
+    for (int k = 0; k < m_; ++k)
+      if ((*h)[k] >= 0) s_.used[(*h)[k]] = 1;
+    std::vector<char> near_level(m_, 0);
+    for (int k = 0; k < m_; ++k) {
+      const Vec2 w = pose->transform(s_.point[k]);
+      const Mat2 cov_w = rot * s_.point_cov[k] * rot.transpose();
+      for (int j = 0; j < n_; ++j) {
+        const Vec2 r = w - p_.candidates[j].position;
+        Mat2 inverse;
+        if (!invert_spd2(cov_w + p_.candidates[j].position_cov, &inverse)) continue;
+        const double d2 = r.dot(inverse * r);
+        if (d2 <= set_.new_landmark_gate) near_level[k] = 1;
+        if ((*h)[k] < 0 && !s_.used[j] && d2 <= set_.gate2) s_.gating.pairs.push_back({d2, k, j});
+      }
+    }
+    stats_->tests += static_cast<std::int64_t>(m_) * n_;
+    for (int k = 0; k < m_; ++k) s_.gating.near_any[s_.order[k]] = near_level[k];
+    if (s_.gating.pairs.empty()) return;
+    auto& pairs = s_.gating.pairs;
+    std::sort(pairs.begin(), pairs.end(), [&](const GatedPair& a, const GatedPair& b) {
+      if (a.d2 != b.d2) return a.d2 < b.d2;
+      if (p_.candidates[a.candidate].id != p_.candidates[b.candidate].id)
+        return p_.candidates[a.candidate].id < p_.candidates[b.candidate].id;
+      return a.measurement < b.measurement;
+    });
+    std::vector<int> extended = *h;
+    for (const GatedPair& g : pairs) {
+      if (extended[g.measurement] >= 0 || s_.used[g.candidate]) continue;
+      extended[g.measurement] = g.candidate;
+      s_.used[g.candidate] = 1;
+    }
+    Pose2 refit;
+    if (verify(extended, &refit)) {
+      *h = std::move(extended);
+      *pose = refit;
+    }
+  }
+
+  const AssociationProblem& p_;
+  const TreeSettings& set_;
+  TreeScratch& s_;
+  AssociationStats* stats_;
+  int m_;
+  int n_;
+  bool signatures_;
+  bool joint_;  // positions come from predictions with a joint covariance (exchange format)
+};
+
+}  // namespace
+
+void solve_tree(const AssociationProblem& problem, const TreeSettings& settings, TreeScratch& scratch,
+                AssociationResult& result, Pose2* pose, bool* verified) {
+  result.stats = {};
+  result.stats.hypotheses = 1;  // the empty hypothesis
+  TreeSearch search(problem, settings, scratch, &result.stats);
+  search.prepare();
+  search.search(0, 0);
+  const bool ok = search.finish(result, pose);
+  if (verified) *verified = ok;
+}
+
+double locality_hypothesis_bound(int n, int m, int c) {
+  if (c <= 0) return static_cast<double>(n) * m + 1.0;  // the limit c -> 0: one pairing at most
+  return n * (std::pow(c + 1.0, m) - 1.0) / c + 1.0;
+}
+
+}  // namespace arbor::association

@@ -1,0 +1,62 @@
+// The interpretation-tree search shared by LocalityTree and InterpretationTree (Grimson 1990, "Object
+// Recognition by Computer", ch. 3-4; locality after Ge & Lewis 2006, ch. 9). Pose-free: it compares the
+// geometry of the measured points (robot frame) with that of the candidates' world positions.
+#ifndef ARBOR_VARIANTS_ASSOCIATION_TREE_SEARCH_H_
+#define ARBOR_VARIANTS_ASSOCIATION_TREE_SEARCH_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "core/association/association_problem.h"
+#include "core/math/pose2.h"
+#include "variants/association/association_common.h"
+
+namespace arbor::association {
+
+struct TreeScratch {
+  IndividualGating gating;       // fallback classification when no hypothesis is verified
+  std::vector<int> order;        // level k of the tree is measurement order[k]
+  std::vector<Vec2> point;       // measured point per level, robot frame
+  std::vector<Mat2> point_cov;   // its covariance J R J^T
+  std::vector<int> loc_begin;    // locality of candidate j as candidate indices: loc[loc_begin[j] ..)
+  std::vector<int> loc;
+  std::vector<std::vector<int>> allowed;  // allowed[d]: candidates open after d pairings (locality search)
+  std::vector<char> used;
+  std::vector<int> current;      // candidate per level, -1 = unpaired
+  std::vector<int> paired_level; // level of each pairing, in tree order
+  std::vector<std::vector<int>> ranked;  // the best hypotheses found, most pairings first
+  std::vector<int> ranked_pairings;
+  std::vector<Pose2> ranked_pose;
+  std::vector<Mat2> jacobian;    // d position / d z_hat per candidate (problems with a joint covariance)
+  std::vector<Vec2> fit_p, fit_q;
+  std::vector<Mat2> fit_cov;
+};
+
+struct TreeSettings {
+  bool use_locality = true;
+  bool anchor_only = false;  // open set = the first paired feature's locality (else the intersection over all)
+  double gate_probability = 0.99;
+  double new_landmark_gate = 0.0;  // chi2(new_landmark_probability, 2)
+  double gate2 = 0.0;              // chi2(gate_probability, 2)
+  double binary_gate = 0.0;        // chi2(gate_probability, 1) for distances and signatures
+  std::int64_t max_hypotheses = 0;
+};
+
+// Verified hypotheses kept, most pairings first; the one whose completion explains most measurements wins.
+inline constexpr int kTreeHypothesesVerified = 8;
+// A hypothesis needs two pairings to fix a pose, so fewer are never accepted.
+inline constexpr int kTreeMinPairings = 2;
+
+// Fills result. stats.hypotheses counts distinct pairing sets visited: 1 (the empty one) plus one per pairing
+// node of the tree (a '*' branch changes no set). For the locality search this never exceeds
+// n((c+1)^m - 1)/c + 1 (DESIGN.md §4), c = the largest locality among the candidates.
+// pose (optional): the verified pose of the accepted hypothesis; *verified says whether there was one.
+void solve_tree(const AssociationProblem& problem, const TreeSettings& settings, TreeScratch& scratch,
+                AssociationResult& result, Pose2* pose = nullptr, bool* verified = nullptr);
+
+// The DESIGN.md §4 bound n((c+1)^m - 1)/c + 1 (as a double: it overflows integers quickly).
+double locality_hypothesis_bound(int n, int m, int c);
+
+}  // namespace arbor::association
+
+#endif  // ARBOR_VARIANTS_ASSOCIATION_TREE_SEARCH_H_

@@ -1,0 +1,341 @@
+// PersistentTreeMap ("tree"): the path-copying balanced binary tree of FastSLAM (Montemerlo et al. 2002;
+// Probabilistic Robotics §13.8). Copying a map is O(1); set/insert/erase copy one root-to-leaf path.
+#ifndef ARBOR_VARIANTS_MAPS_PERSISTENT_TREE_MAP_H_
+#define ARBOR_VARIANTS_MAPS_PERSISTENT_TREE_MAP_H_
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <utility>
+
+#include "core/check.h"
+#include "core/engine/landmark.h"
+#include "core/engine/map_concept.h"
+#include "variants/maps/node_pool.h"
+#include "variants/maps/persistent_node.h"
+
+namespace arbor {
+
+// A leaf-oriented AVL tree keyed by LandmarkId: landmarks sit in the leaves; an inner node holds a separator
+// (every id in its left subtree is <= split < every id in its right one), its height, its leaf count and the
+// bounding box of the landmark means below it.
+//
+// Balancing: AVL (Adelson-Velsky & Landis 1962) on the inner nodes, heights of the two subtrees differ by at
+// most one, so the height is <= 1.44 log2(N+2) whatever the order of inserts (the engine's increasing ids
+// are the worst case for an unbalanced tree) and erases. Rotations never change a separator, so a stale
+// separator left by an erase stays valid.
+//
+// Sharing: nodes carry an intrusive atomic count. A write walks down from the root and copies each node that
+// another map also references (count > 1); below the first copied node every node it reaches is copied too,
+// the siblings off the path are shared. A node with count 1 reached through nodes with count 1 is ours and
+// is written in place (the rvalue case: a particle updating its own, unshared, path).
+//
+// Freeing: dropping a reference frees only nodes whose count reaches zero, with an explicit stack; the
+// freed nodes are the ones a write made unreachable, so freeing costs amortised O(log N) per update.
+//
+// Complexity (N landmarks, k results): find O(log N); set/insert/erase O(log N) time and at most
+// height+1 new nodes (48 B each, 96 B per leaf); copy O(1); visit_near O(log N + k) nodes when ids are
+// spatially coherent (ids are a creation serial, so neighbours in id were created near each other).
+class PersistentTreeMap {
+  struct Tag {};
+
+ public:
+  static constexpr std::string_view kName = "tree";
+  using Pool = internal::NodePool<Tag>;
+
+  PersistentTreeMap() = default;
+  PersistentTreeMap(const PersistentTreeMap& o) : root_(o.root_) { acquire(root_); }
+  PersistentTreeMap(PersistentTreeMap&& o) noexcept : root_(std::exchange(o.root_, {})) {}
+  PersistentTreeMap& operator=(const PersistentTreeMap& o) {
+    if (this != &o) {
+      acquire(o.root_);
+      release(std::exchange(root_, o.root_));
+    }
+    return *this;
+  }
+  PersistentTreeMap& operator=(PersistentTreeMap&& o) noexcept {
+    if (this != &o) release(std::exchange(root_, std::exchange(o.root_, {})));
+    return *this;
+  }
+  ~PersistentTreeMap() { release(root_); }
+
+  std::size_t size() const { return leaves(root_); }
+
+  // O(log N), no allocation. The pointer is valid until this map is next modified.
+  const Landmark* find(LandmarkId id) const {
+    Ref r = root_;
+    while (r && !r.is_leaf()) {
+      const Inner* n = r.as_inner<Inner>();
+      r = n->child[id <= n->split ? 0 : 1];
+    }
+    return r && r.as_leaf()->id == id ? r.as_leaf() : nullptr;
+  }
+
+  // Replaces the landmark with id lm.id, which must exist. Copies the shared part of its path.
+  void set(const Landmark& lm) {
+    ARBOR_CHECK(root_, "set of absent landmark {}", lm.id);
+    root_ = set_rec(root_, lm);
+  }
+
+  // Adds a landmark whose id is absent. O(log N), at most height+2 new nodes.
+  void insert(const Landmark& lm) {
+    if (!root_) {
+      root_ = Ref::leaf(internal::new_leaf<Pool>(lm));
+      return;
+    }
+    root_ = insert_rec(root_, lm);
+  }
+
+  // Removes the landmark with this id if present.
+  bool erase(LandmarkId id) {
+    if (find(id) == nullptr) return false;
+    root_ = erase_rec(root_, id);
+    return true;
+  }
+
+  // Ascending id order (in-order walk).
+  template <class F>
+  void for_each(F&& f) const {
+    walk(root_, nullptr, f);
+  }
+  // Landmarks whose mean lies in box, ascending id; subtrees whose bounding box misses the box are skipped.
+  template <class F>
+  void visit_near(const Box2& box, F&& f) const {
+    walk(root_, &box, f);
+  }
+
+  // Nodes and bytes reachable; a node counts as shared if it, or a node above it, has count > 1 (so another
+  // map reaches it). Walks only the unshared part: shared subtrees are summed from their leaf counts.
+  MapMemoryStats memory_stats() const {
+    MapMemoryStats s;
+    if (!root_) return s;
+    std::array<std::pair<Ref, bool>, kStackSize> stack;
+    int top = 0;
+    stack[top++] = {root_, false};
+    while (top > 0) {
+      auto [r, above_shared] = stack[--top];
+      if (r.is_leaf()) {
+        const bool shared = above_shared || r.as_leaf()->rc.load(std::memory_order_relaxed) > 1;
+        add(s, 1, sizeof(internal::LeafNode), shared);
+        continue;
+      }
+      const Inner* n = r.as_inner<Inner>();
+      if (above_shared || n->rc.load(std::memory_order_relaxed) > 1) {
+        add(s, 2 * std::size_t{n->leaves} - 1,
+            n->leaves * sizeof(internal::LeafNode) + (n->leaves - 1) * sizeof(Inner), true);
+        continue;
+      }
+      add(s, 1, sizeof(Inner), false);
+      stack[top++] = {n->child[0], false};
+      stack[top++] = {n->child[1], false};
+    }
+    return s;
+  }
+
+  // Nodes of all tree maps alive now (leak tests), and their bytes.
+  static std::int64_t live_nodes() { return Pool::live_nodes(); }
+  static std::int64_t live_bytes() { return Pool::live_bytes(); }
+  // Height of the tree (0 for a single leaf; tests check the AVL bound).
+  int height() const { return height(root_); }
+
+ private:
+  using Ref = internal::NodeRef;
+  struct alignas(16) Inner {
+    std::atomic<std::uint32_t> rc{1};
+    std::int32_t height = 1;
+    LandmarkId split = 0;
+    std::uint32_t leaves = 0;
+    internal::FBox box;
+    Ref child[2];
+  };
+  static_assert(sizeof(Inner) == 48);
+  // AVL height <= 1.44 log2(N + 2) < 46 for N < 2^31; a depth-first walk holds at most 2 per level.
+  static constexpr int kStackSize = 128;
+
+  static void add(MapMemoryStats& s, std::size_t nodes, std::size_t bytes, bool shared) {
+    s.nodes += nodes;
+    s.bytes += bytes;
+    if (shared) {
+      s.shared_nodes += nodes;
+      s.shared_bytes += bytes;
+    }
+  }
+  static std::uint32_t leaves(Ref r) { return !r ? 0 : r.is_leaf() ? 1 : r.as_inner<Inner>()->leaves; }
+  static int height(Ref r) { return !r || r.is_leaf() ? 0 : r.as_inner<Inner>()->height; }
+  static internal::FBox box_of(Ref r) {
+    if (!r.is_leaf()) return r.as_inner<Inner>()->box;
+    internal::FBox b;
+    b.grow(r.as_leaf()->mean);
+    return b;
+  }
+
+  static void acquire(Ref r) {
+    if (!r) return;
+    if (r.is_leaf()) internal::ref_inc(r.as_leaf()->rc);
+    else internal::ref_inc(r.as_inner<Inner>()->rc);
+  }
+  static Inner* new_inner() { return new (Pool::allocate(sizeof(Inner))) Inner; }
+  static void delete_inner(Inner* n) {
+    n->~Inner();
+    Pool::deallocate(n, sizeof(Inner));
+  }
+  // Drops one reference; frees every node whose count reaches zero, iteratively.
+  static void release(Ref r) {
+    if (!r) return;
+    if (r.is_leaf()) {
+      internal::release_leaf<Pool>(r.as_leaf());
+      return;
+    }
+    Inner* n = r.as_inner<Inner>();
+    if (!internal::ref_dec(n->rc)) return;
+    std::array<Inner*, kStackSize> stack;
+    int top = 0;
+    stack[top++] = n;
+    while (top > 0) {
+      Inner* cur = stack[--top];
+      for (Ref c : cur->child) {
+        if (!c) continue;
+        if (c.is_leaf()) internal::release_leaf<Pool>(c.as_leaf());
+        else if (internal::ref_dec(c.as_inner<Inner>()->rc)) stack[top++] = c.as_inner<Inner>();
+      }
+      delete_inner(cur);
+    }
+  }
+  // n (whose reference the caller owns) made writable: itself when unshared, else a copy sharing its children.
+  static Inner* writable(Inner* n) {
+    if (internal::ref_unique(n->rc)) return n;
+    Inner* c = new_inner();
+    c->height = n->height;
+    c->split = n->split;
+    c->leaves = n->leaves;
+    c->box = n->box;
+    c->child[0] = n->child[0];
+    c->child[1] = n->child[1];
+    acquire(c->child[0]);
+    acquire(c->child[1]);
+    release(Ref::inner(n));
+    return c;
+  }
+
+  static Ref set_rec(Ref r, const Landmark& lm) {
+    if (r.is_leaf()) {
+      ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
+      return Ref::leaf(internal::replace_leaf<Pool>(r.as_leaf(), lm));
+    }
+    Inner* n = writable(r.as_inner<Inner>());
+    Ref& c = n->child[lm.id <= n->split ? 0 : 1];
+    c = set_rec(c, lm);
+    n->box.grow(lm.mean);
+    return Ref::inner(n);
+  }
+
+  static Ref insert_rec(Ref r, const Landmark& lm) {
+    if (r.is_leaf()) {
+      const internal::LeafNode* old = r.as_leaf();
+      ARBOR_CHECK(old->id != lm.id, "insert of present landmark {}", lm.id);
+      Ref fresh = Ref::leaf(internal::new_leaf<Pool>(lm));
+      Inner* n = new_inner();
+      const bool fresh_right = lm.id > old->id;
+      n->child[0] = fresh_right ? r : fresh;
+      n->child[1] = fresh_right ? fresh : r;
+      n->split = std::min(lm.id, old->id);
+      n->leaves = 2;
+      n->box.grow(old->mean);
+      n->box.grow(lm.mean);
+      return Ref::inner(n);
+    }
+    Inner* n = writable(r.as_inner<Inner>());
+    Ref& c = n->child[lm.id <= n->split ? 0 : 1];
+    c = insert_rec(c, lm);
+    return Ref::inner(rebalance(n));
+  }
+
+  static Ref erase_rec(Ref r, LandmarkId id) {
+    if (r.is_leaf()) {
+      release(r);
+      return {};
+    }
+    Inner* n = writable(r.as_inner<Inner>());
+    const int side = id <= n->split ? 0 : 1;
+    Ref c = erase_rec(n->child[side], id);
+    if (!c) {  // the leaf went: n's other child takes n's place
+      Ref other = std::exchange(n->child[1 - side], {});
+      n->child[side] = {};
+      release(Ref::inner(n));
+      return other;
+    }
+    n->child[side] = c;
+    return Ref::inner(rebalance(n));
+  }
+
+  static void refresh(Inner* n) {
+    n->height = 1 + std::max(height(n->child[0]), height(n->child[1]));
+    n->leaves = leaves(n->child[0]) + leaves(n->child[1]);
+    n->box = box_of(n->child[0]);
+    n->box.grow(box_of(n->child[1]));
+  }
+  // n is writable; its children are n's own references.
+  static Inner* rotate_right(Inner* n) {
+    Inner* l = writable(n->child[0].as_inner<Inner>());
+    n->child[0] = l->child[1];
+    refresh(n);
+    l->child[1] = Ref::inner(n);
+    refresh(l);
+    return l;
+  }
+  static Inner* rotate_left(Inner* n) {
+    Inner* r = writable(n->child[1].as_inner<Inner>());
+    n->child[1] = r->child[0];
+    refresh(n);
+    r->child[0] = Ref::inner(n);
+    refresh(r);
+    return r;
+  }
+  static Inner* rebalance(Inner* n) {
+    const int hl = height(n->child[0]), hr = height(n->child[1]);
+    if (hl > hr + 1) {
+      const Inner* l = n->child[0].as_inner<Inner>();
+      if (height(l->child[0]) < height(l->child[1]))
+        n->child[0] = Ref::inner(rotate_left(writable(n->child[0].as_inner<Inner>())));
+      return rotate_right(n);
+    }
+    if (hr > hl + 1) {
+      const Inner* r = n->child[1].as_inner<Inner>();
+      if (height(r->child[1]) < height(r->child[0]))
+        n->child[1] = Ref::inner(rotate_right(writable(n->child[1].as_inner<Inner>())));
+      return rotate_left(n);
+    }
+    refresh(n);
+    return n;
+  }
+
+  template <class F>
+  static void walk(Ref root, const Box2* box, F& f) {
+    if (!root) return;
+    std::array<Ref, kStackSize> stack;
+    int top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+      Ref r = stack[--top];
+      if (r.is_leaf()) {
+        const Landmark& lm = *r.as_leaf();
+        if (box == nullptr || box->contains(lm.mean)) f(lm);
+        continue;
+      }
+      const Inner* n = r.as_inner<Inner>();
+      if (box != nullptr && !n->box.intersects(*box)) continue;
+      stack[top++] = n->child[1];
+      stack[top++] = n->child[0];
+    }
+  }
+
+  Ref root_;
+};
+
+static_assert(LandmarkMap<PersistentTreeMap>);
+
+}  // namespace arbor
+
+#endif  // ARBOR_VARIANTS_MAPS_PERSISTENT_TREE_MAP_H_

@@ -1,0 +1,153 @@
+// Ceres residual functors for the factors of factor_graph.h, templated on the scalar for automatic
+// differentiation (in the manner of Ceres's examples/slam/pose_graph_2d/pose_graph_2d_error_term.h).
+// Each residual is whitened, r = W e with W^T W = Sigma^-1, so the cost is half the Mahalanobis distance.
+// Include from variants/smoothing/*.cc only: this header pulls in Ceres.
+#ifndef ARBOR_VARIANTS_SMOOTHING_FACTORS_H_
+#define ARBOR_VARIANTS_SMOOTHING_FACTORS_H_
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/Core>
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/jet.h>
+
+#include "core/check.h"
+#include "core/math/angles.h"
+#include "variants/smoothing/factor_graph.h"
+
+namespace arbor::internal {
+
+// Wraps to [-pi, pi) for doubles and Jets alike (the derivative of a wrap is 1, and floor's is 0).
+template <typename T>
+T wrap_angle_t(const T& angle) {
+  using std::floor;
+  constexpr double kTwoPi = 2.0 * kPi;
+  return angle - kTwoPi * floor((angle + kPi) / kTwoPi);
+}
+
+// W = L^T where Sigma^-1 = L L^T (upper triangular, so the whitened residual stays cheap).
+template <int N>
+Eigen::Matrix<double, N, N> square_root_information(const Eigen::Matrix<double, N, N>& covariance) {
+  const Eigen::Matrix<double, N, N> information = covariance.inverse();
+  Eigen::LLT<Eigen::Matrix<double, N, N>> llt(0.5 * (information + information.transpose()));
+  ARBOR_CHECK(llt.info() == Eigen::Success, "factor covariance is not positive definite");
+  return llt.matrixL().transpose();
+}
+
+// BetweenFactor: parameters pose_from[3], pose_to[3]; residual 3.
+class BetweenError {
+ public:
+  BetweenError(const Pose2& delta, const Mat3& covariance)
+      : delta_(delta), sqrt_information_(square_root_information<3>(covariance)) {}
+
+  template <typename T>
+  bool operator()(const T* from, const T* to, T* residual) const {
+    using std::cos;
+    using std::sin;
+    const T c = cos(from[2]), s = sin(from[2]);
+    const T dx = to[0] - from[0], dy = to[1] - from[1];
+    // from^-1 * to, minus delta's translation, then rotated into delta's frame.
+    const T tx = c * dx + s * dy - delta_.x, ty = -s * dx + c * dy - delta_.y;
+    const double cd = std::cos(delta_.theta), sd = std::sin(delta_.theta);
+    Eigen::Matrix<T, 3, 1> e;
+    e << cd * tx + sd * ty, -sd * tx + cd * ty, wrap_angle_t(to[2] - from[2] - T(delta_.theta));
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
+    r = sqrt_information_.template cast<T>() * e;
+    return true;
+  }
+
+  static ceres::CostFunction* create(const BetweenFactor& f) {
+    return new ceres::AutoDiffCostFunction<BetweenError, 3, 3, 3>(new BetweenError(f.delta, f.covariance));
+  }
+
+ private:
+  Pose2 delta_;
+  Mat3 sqrt_information_;
+};
+
+// RangeBearingFactor: parameters pose[3], landmark[2]; residual 2; bearing error wrapped.
+class RangeBearingError {
+ public:
+  RangeBearingError(const Vec2& z, const Mat2& covariance)
+      : z_(z), sqrt_information_(square_root_information<2>(covariance)) {}
+
+  template <typename T>
+  bool operator()(const T* pose, const T* landmark, T* residual) const {
+    using std::atan2;
+    using std::sqrt;
+    const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
+    T q = dx * dx + dy * dy;
+    if (q < T(1e-12)) q = T(1e-12);  // as range_bearing_predict: finite at the sensor itself
+    Eigen::Matrix<T, 2, 1> e;
+    e << sqrt(q) - z_.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z_.y());
+    Eigen::Map<Eigen::Matrix<T, 2, 1>> r(residual);
+    r = sqrt_information_.template cast<T>() * e;
+    return true;
+  }
+
+  static ceres::CostFunction* create(const RangeBearingFactor& f) {
+    return new ceres::AutoDiffCostFunction<RangeBearingError, 2, 3, 2>(new RangeBearingError(f.z, f.covariance));
+  }
+
+ private:
+  Vec2 z_;
+  Mat2 sqrt_information_;
+};
+
+// PointFactor: parameters pose[3], landmark[2]; residual 2: R(th)^T (m - p) - p_robot.
+class PointError {
+ public:
+  PointError(const Vec2& p_robot, const Mat2& covariance)
+      : p_robot_(p_robot), sqrt_information_(square_root_information<2>(covariance)) {}
+
+  template <typename T>
+  bool operator()(const T* pose, const T* landmark, T* residual) const {
+    using std::cos;
+    using std::sin;
+    const T c = cos(pose[2]), s = sin(pose[2]);
+    const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
+    Eigen::Matrix<T, 2, 1> e;
+    e << c * dx + s * dy - p_robot_.x(), -s * dx + c * dy - p_robot_.y();
+    Eigen::Map<Eigen::Matrix<T, 2, 1>> r(residual);
+    r = sqrt_information_.template cast<T>() * e;
+    return true;
+  }
+
+  static ceres::CostFunction* create(const PointFactor& f) {
+    return new ceres::AutoDiffCostFunction<PointError, 2, 3, 2>(new PointError(f.p_robot, f.covariance));
+  }
+
+ private:
+  Vec2 p_robot_;
+  Mat2 sqrt_information_;
+};
+
+// PosePriorFactor: parameters pose[3]; residual 3.
+class PosePriorError {
+ public:
+  PosePriorError(const Pose2& mean, const Mat3& covariance)
+      : mean_(mean), sqrt_information_(square_root_information<3>(covariance)) {}
+
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    Eigen::Matrix<T, 3, 1> e;
+    e << pose[0] - mean_.x, pose[1] - mean_.y, wrap_angle_t(pose[2] - T(mean_.theta));
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
+    r = sqrt_information_.template cast<T>() * e;
+    return true;
+  }
+
+  static ceres::CostFunction* create(const PosePriorFactor& f) {
+    return new ceres::AutoDiffCostFunction<PosePriorError, 3, 3>(new PosePriorError(f.mean, f.covariance));
+  }
+
+ private:
+  Pose2 mean_;
+  Mat3 sqrt_information_;
+};
+
+}  // namespace arbor::internal
+
+#endif  // ARBOR_VARIANTS_SMOOTHING_FACTORS_H_
