@@ -2,6 +2,8 @@
 // frame and merges controls and scans in time order.
 #include "experiments/loaders/victoria_park.h"
 
+#include <algorithm>
+
 #include <fmt/core.h>
 
 #include "core/io/text_reader.h"
@@ -104,12 +106,23 @@ Scenario load_victoria_park(const std::string& dir, LoadReport* report, const Vi
   s.initial_pose = {-67.6493, -41.7142, 35.5 * kPi / 180.0};
   s.initial_sigma = Vec3::Zero();
 
+  // Detections beyond the sensor model's range are dropped (the scan itself is kept): the filter considers
+  // only landmarks within range as association candidates, so a far tree would start a new landmark at every
+  // sighting.
+  std::vector<TimedScan> in_range = scans;
+  for (auto& scan : in_range) {
+    const auto far = std::remove_if(scan.measurements.begin(), scan.measurements.end(),
+                                    [&](const Measurement& m) { return m.range_m > tuning.max_range_m; });
+    report->add("dropped: detection beyond max range", static_cast<std::int64_t>(scan.measurements.end() - far));
+    scan.measurements.erase(far, scan.measurements.end());
+  }
+
   StepMergeOptions merge;
   merge.start_ms = std::min(controls.front().time_ms, scans.empty() ? INT64_MAX : scans.front().time_ms);
   merge.origin_ms = static_cast<double>(kVictoriaParkOriginMs);
   merge.before_first = {merge.start_ms, 0.0, controls.front().u2};  // standing still until the first reading
   s.start_time_s = (merge.start_ms - kVictoriaParkOriginMs) / 1000.0;
-  s.steps = merge_controls_and_scans(controls, scans, merge);
+  s.steps = merge_controls_and_scans(controls, in_range, merge);
 
   report->add("dead-reckoning samples", static_cast<std::int64_t>(controls.size()));
   report->add("scans", static_cast<std::int64_t>(scans.size()));

@@ -124,6 +124,7 @@ TEST(VictoriaPark, ExcerptLoads) {
   EXPECT_EQ(s.steps.size(), 442u);
   EXPECT_EQ(report.count("scans"), 43);
   EXPECT_EQ(report.count("tree detections"), 382);
+  EXPECT_EQ(report.count("dropped: detection beyond max range"), 37);
   EXPECT_EQ(s.truth_track.size(), 47u);
   EXPECT_EQ(s.motion.kind, MotionModelKind::kAckermann);
   EXPECT_DOUBLE_EQ(s.start_time_s, 0.852);
@@ -149,6 +150,7 @@ TEST(VictoriaPark, FullDatasetHasTheExpectedScansAndSteps) {
   EXPECT_EQ(report.count("scans"), 7230);
   EXPECT_EQ(report.count("dead-reckoning samples"), 61945);
   EXPECT_EQ(report.count("tree detections"), 52974);
+  EXPECT_EQ(report.count("dropped: detection beyond max range"), 15576);  // range > 30 m
   EXPECT_EQ(s.steps.size(), 68890u);
   EXPECT_EQ(s.truth_track.size(), 4466u);
   std::size_t with_scan = 0;
