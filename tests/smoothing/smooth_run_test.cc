@@ -1,0 +1,81 @@
+// `arbor smooth`'s pipeline: result files with the fields of `arbor run` plus the solver's, the g2o export,
+// and association decisions read from a FastSLAM result directory (with errors naming file, line and field).
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "experiments/run/smooth_run.h"
+#include "experiments/sim/simulator.h"
+
+namespace arbor {
+namespace {
+
+std::string fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("arbor_smooth_run_" + std::to_string(::getpid()) + "_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+Scenario small_world() {
+  SimulationOptions sim;
+  sim.world.landmarks = 40;
+  sim.steps = 60;
+  return simulate(sim);
+}
+
+TEST(SmoothRun, WritesResultFilesWithTheRunFieldsAndTheSolverFields) {
+  const std::string dir = fresh_dir("files");
+  write_scenario(small_world(), dir + "/scenario.txt");
+  SmoothConfig config;
+  config.scenario_path = dir + "/scenario.txt";
+  config.g2o_path = dir + "/problem.g2o";
+  config.out_dir = dir + "/out";
+  const SmoothOutput out = run_smoother(config);
+  for (const char* f : {"result.json", "trajectory.tum", "map.csv"})
+    EXPECT_TRUE(std::filesystem::exists(config.out_dir + "/" + f)) << f;
+  EXPECT_TRUE(std::filesystem::exists(config.g2o_path));
+  std::ifstream in(config.out_dir + "/result.json");
+  const nlohmann::json r = nlohmann::json::parse(in);
+  for (const char* key : {"config", "ate_rmse_m", "ate_aligned_rmse_m", "landmark_rmse_m", "nees_mean", "assoc_precision",
+                          "assoc_recall", "assoc_f1", "landmarks", "steps", "step_time_median_s", "step_time_p95_s",
+                          "wall_time_s", "peak_rss_bytes", "solve_time_s", "iterations", "initial_cost", "final_cost",
+                          "termination"})
+    EXPECT_TRUE(r.contains(key)) << key;
+  EXPECT_EQ(r["termination"], "CONVERGENCE");
+  EXPECT_LT(r["ate_rmse_m"].get<double>(), r["dead_reckoning_ate_m"].get<double>());
+  EXPECT_LT(r["landmark_rmse_m"].get<double>(), 0.5);
+  EXPECT_EQ(r["config"]["associations"], "known");
+}
+
+TEST(SmoothRun, ReadsAssociationDecisions) {
+  const Scenario s = small_world();
+  const std::string dir = fresh_dir("decisions");
+  int first = -1;
+  for (std::size_t k = 0; k < s.steps.size() && first < 0; ++k)
+    if (!s.steps[k].measurements.empty()) first = static_cast<int>(k);
+  ASSERT_GE(first, 0);
+  std::ofstream(dir + "/associations.csv") << "step,measurement,landmark\n" << first << ",0,17\n";
+  const SmootherAssociations a = read_association_decisions(dir, s);
+  EXPECT_EQ(a.landmark_ids[first][0], 17);
+  EXPECT_EQ(a.associated_count(), 1u);
+
+  std::ofstream(dir + "/associations.csv") << "step,measurement,landmark\n" << first << ",999,17\n";
+  try {
+    read_association_decisions(dir, s);
+    FAIL() << "no error for a measurement index out of range";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.field(), "measurement");
+  }
+  EXPECT_THROW(read_association_decisions(fresh_dir("empty"), s), InputError);
+}
+
+}  // namespace
+}  // namespace arbor
