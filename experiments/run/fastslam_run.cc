@@ -80,6 +80,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   if (align) truth = scenario.truth_track;
   const auto ate = absolute_trajectory_error(best, truth, align);
   const auto ate_mean = absolute_trajectory_error(mean_trajectory, truth, align);
+  // SE(2)-aligned ATE, comparable with the smoother's and with other tools whose frame may differ.
+  const auto ate_aligned = absolute_trajectory_error(best, truth, true);
   const auto ate_dr = absolute_trajectory_error(dead_reckoning(scenario), truth, align);
   const auto lm_rmse = landmark_rmse(map, scenario.truth_landmarks, ate ? ate->alignment : Pose2{});
   double nees_mean = 0.0;
@@ -103,6 +105,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["ate_rmse_m"] = ate ? Json(ate->rmse_m) : Json(nullptr);
   r["ate_mean_rmse_m"] = ate_mean ? Json(ate_mean->rmse_m) : Json(nullptr);
   r["ate_aligned"] = align;
+  r["ate_aligned_rmse_m"] = ate_aligned ? Json(ate_aligned->rmse_m) : Json(nullptr);
   r["dead_reckoning_ate_m"] = ate_dr ? Json(ate_dr->rmse_m) : Json(nullptr);
   r["landmark_rmse_m"] = optional_number(lm_rmse);
   r["nees_mean"] = out.nees.empty() ? Json(nullptr) : Json(nees_mean);
