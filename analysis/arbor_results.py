@@ -66,6 +66,7 @@ def lines_for(df, x, min_points=2):
     x values. Yields (label, rows); the label names only the columns that differ between the kept lines."""
     df = df[df[x].notna()]
     by = [c for c in varying(df, METHOD + CONTEXT) if c != x]
+    by = drop_identical_map_backends(df, by, x)
     if not by:
         if df[x].nunique() >= min_points:
             yield "all runs", df
@@ -76,6 +77,16 @@ def lines_for(df, x, min_points=2):
     shown = varying(pd.concat(kept), by) or ["filter"]
     for g in kept:
         yield label(g.iloc[0], shown), g
+
+
+def drop_identical_map_backends(df, by, x):
+    """Map back ends give bit-identical filter output (a tested property); when the results confirm it, one
+    line stands for all of them instead of one per back end."""
+    if "map" not in by or "ate_rmse_m" not in df:
+        return by
+    rest = [c for c in by if c != "map"] + [c for c in (x, "seed") if c in df and c not in by]
+    same = df.groupby(rest, dropna=False)["ate_rmse_m"].nunique(dropna=False).max() <= 1 if rest else False
+    return [c for c in by if c != "map"] if same else by
 
 
 def label(row, columns):
