@@ -18,7 +18,7 @@ def make(df, out_dir, results_path=None):
     fig, axes = ar.plt.subplots(1, len(metrics), figsize=(5.2 * len(metrics), 4.2), layout="constrained", squeeze=False)
     table = {}
     for ax, metric in zip(axes[0], metrics):
-        for name, g in ar.lines_for(df, "particles"):
+        for name, g in ar.lines_for(df, "particles", collapse_identical_maps=True):
             s = ar.summarize(g, ["particles"], metric)
             ax.errorbar(s["particles"], s["mean"], yerr=s["ci"], marker="o", capsize=3, label=name)
             for _, r in s.iterrows():

@@ -60,13 +60,15 @@ def varying(df, columns):
     return [c for c in columns if c in df.columns and df[c].nunique(dropna=True) > 1]
 
 
-def lines_for(df, x, min_points=2):
+def lines_for(df, x, min_points=2, collapse_identical_maps=False):
     """The groups of rows that make one line each in a figure with x on the horizontal axis: rows grouped by
     every method and context column that varies (except x), keeping groups with at least min_points distinct
-    x values. Yields (label, rows); the label names only the columns that differ between the kept lines."""
+    x values. Yields (label, rows); the label names only the columns that differ between the kept lines.
+    With collapse_identical_maps, one line stands for all map back ends where their ATE agrees run for run."""
     df = df[df[x].notna()]
     by = [c for c in varying(df, METHOD + CONTEXT) if c != x]
-    by = drop_identical_map_backends(df, by, x)
+    if collapse_identical_maps:  # for accuracy figures only: timings do differ between back ends
+        by = drop_identical_map_backends(df, by, x)
     if not by:
         if df[x].nunique() >= min_points:
             yield "all runs", df

@@ -20,7 +20,7 @@ def make(df, out_dir, results_path=None):
                                 squeeze=False, sharey=True)
     rows = []
     for ax, metric in zip(axes[0], metrics):
-        for name, g in ar.lines_for(df, "clutter"):
+        for name, g in ar.lines_for(df, "clutter", collapse_identical_maps=True):
             s = ar.summarize(g, ["clutter"], metric)
             ax.errorbar(s["clutter"], s["mean"], yerr=s["ci"], marker="o", capsize=3, label=name)
             if metric == "assoc_f1":
