@@ -6,35 +6,11 @@
 #include <string_view>
 
 #include "core/association/association_problem.h"
-#include "variants/association/tree_search.h"
-#include "variants/association/tree_settings.h"
+#include "variants/association/tree_strategy.h"
 
 namespace arbor {
 
-class InterpretationTree {
- public:
-  using Scratch = association::TreeScratch;
-  static constexpr std::string_view kName = "itree";
-  static constexpr bool kUsesGroundTruth = false;
-
-  explicit InterpretationTree(const AssociationOptions& options)
-      : settings_(association::make_tree_settings(options, false)) {}
-  // Per-particle use: the pose-free search, whose answer must also pass the joint test with the problem's own
-  // predictions (so a coincidence elsewhere in the map cannot capture a tracking particle).
-  void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
-    association::solve_tree(problem, settings_, scratch, result);
-  }
-  // Relocalisation: the prior is not trusted (no prior check); returns the verified pose world_T_robot.
-  bool solve_with_pose(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result,
-                       Pose2* world_T_robot) const {
-    bool verified = false;
-    association::solve_tree(problem, settings_, scratch, result, world_T_robot, &verified);
-    return verified;
-  }
-
- private:
-  association::TreeSettings settings_;
-};
+using InterpretationTree = TreeStrategy<false>;
 
 static_assert(AssociationStrategy<InterpretationTree>);
 

@@ -6,8 +6,7 @@
 #include <string_view>
 
 #include "core/association/association_problem.h"
-#include "variants/association/tree_search.h"
-#include "variants/association/tree_settings.h"
+#include "variants/association/tree_strategy.h"
 
 namespace arbor {
 
@@ -20,29 +19,7 @@ namespace arbor {
 // clutter, kidnapped): anchor 26/30 correct, intersection 25/30; TreeSettings::anchor_only selects it.
 // Needs no pose prior: candidates' world positions and the measured points in the robot frame only. The
 // best hypotheses (most pairings) are verified by a closed-form pose and a joint chi-square test.
-class LocalityTree {
- public:
-  using Scratch = association::TreeScratch;
-  static constexpr std::string_view kName = "locality";
-  static constexpr bool kUsesGroundTruth = false;
-
-  explicit LocalityTree(const AssociationOptions& options) : settings_(association::make_tree_settings(options, true)) {}
-  // Per-particle use: the pose-free search, whose answer must also pass the joint test with the problem's own
-  // predictions (so a coincidence elsewhere in the map cannot capture a tracking particle).
-  void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
-    association::solve_tree(problem, settings_, scratch, result);
-  }
-  // Relocalisation: the prior is not trusted (no prior check); returns the verified pose world_T_robot.
-  bool solve_with_pose(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result,
-                       Pose2* world_T_robot) const {
-    bool verified = false;
-    association::solve_tree(problem, settings_, scratch, result, world_T_robot, &verified);
-    return verified;
-  }
-
- private:
-  association::TreeSettings settings_;
-};
+using LocalityTree = TreeStrategy<true>;
 
 static_assert(AssociationStrategy<LocalityTree>);
 
