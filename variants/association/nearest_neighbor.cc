@@ -7,14 +7,6 @@
 
 namespace arbor {
 
-NearestNeighbor::NearestNeighbor(const AssociationOptions& options)
-    : gate_(chi_square_quantile(options.gate_probability, 2)),
-      new_landmark_gate_(chi_square_quantile(options.new_landmark_probability, 2)) {}
-
-NearestNeighborNoExclusion::NearestNeighborNoExclusion(const AssociationOptions& options)
-    : gate_(chi_square_quantile(options.gate_probability, 2)),
-      new_landmark_gate_(chi_square_quantile(options.new_landmark_probability, 2)) {}
-
 void solve_nearest_neighbor(const AssociationProblem& problem, double gate, double new_landmark_gate,
                             bool exclusive, NearestNeighborScratch& scratch, AssociationResult& result) {
   using association::GatedPair;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/association/association_problem.h"
+#include "core/math/chi_square.h"
 #include "variants/association/association_common.h"
 
 namespace arbor {
@@ -26,15 +27,18 @@ void solve_nearest_neighbor(const AssociationProblem& problem, double gate, doub
 // Mutual exclusion resolved greedily: all gated pairs sorted by (Mahalanobis distance, landmark id, the
 // measurement's canonical rank) and accepted when neither side is taken yet, so the answer does not depend on
 // the order of the input. Greedy, not optimal (that is what JCBB is for).
-class NearestNeighbor {
+template <bool kExclusive>
+class NearestNeighborStrategy {
  public:
   using Scratch = NearestNeighborScratch;
-  static constexpr std::string_view kName = "nn";
+  static constexpr std::string_view kName = kExclusive ? "nn" : "nn-independent";
   static constexpr bool kUsesGroundTruth = false;
 
-  explicit NearestNeighbor(const AssociationOptions& options);
+  explicit NearestNeighborStrategy(const AssociationOptions& options)
+      : gate_(chi_square_quantile(options.gate_probability, 2)),
+        new_landmark_gate_(chi_square_quantile(options.new_landmark_probability, 2)) {}
   void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
-    solve_nearest_neighbor(problem, gate_, new_landmark_gate_, true, scratch, result);
+    solve_nearest_neighbor(problem, gate_, new_landmark_gate_, kExclusive, scratch, result);
   }
 
  private:
@@ -42,21 +46,9 @@ class NearestNeighbor {
   double new_landmark_gate_;
 };
 
-class NearestNeighborNoExclusion {
- public:
-  using Scratch = NearestNeighborScratch;
-  static constexpr std::string_view kName = "nn-independent";
-  static constexpr bool kUsesGroundTruth = false;
-
-  explicit NearestNeighborNoExclusion(const AssociationOptions& options);
-  void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const {
-    solve_nearest_neighbor(problem, gate_, new_landmark_gate_, false, scratch, result);
-  }
-
- private:
-  double gate_;
-  double new_landmark_gate_;
-};
+using NearestNeighbor = NearestNeighborStrategy<true>;
+// Each measurement takes its most likely landmark, even one another measurement also took.
+using NearestNeighborNoExclusion = NearestNeighborStrategy<false>;
 
 static_assert(AssociationStrategy<NearestNeighbor>);
 static_assert(AssociationStrategy<NearestNeighborNoExclusion>);
