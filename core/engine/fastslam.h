@@ -23,7 +23,7 @@
 #include "core/check.h"
 #include "core/engine/fastslam_options.h"
 #include "core/engine/map_concept.h"
-#include "core/engine/pose_history.h"
+#include "core/engine/persistent_history.h"
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
 #include "core/io/scenario.h"
@@ -40,6 +40,7 @@ struct Particle {
   double log_weight = 0.0;
   Map map;
   PoseHistory history;
+  DecisionHistory decisions;    // only scans with measurements; for the smoother (`arbor smooth --associations`)
   LandmarkId next_id = 0;       // ids in creation order: the same in every back end
   AssociationCounts counts;     // this lineage's decisions scored against ground truth (metrics only)
 };
@@ -80,7 +81,7 @@ class FastSlam {
       pose.x += scenario.initial_sigma.x() * rng.normal();
       pose.y += scenario.initial_sigma.y() * rng.normal();
       pose.theta = wrap_angle(pose.theta + scenario.initial_sigma.z() * rng.normal());
-      particles_[i].history.push(scenario.start_time_s, pose);
+      particles_[i].history.push({scenario.start_time_s, pose});
     }
     weights_.assign(options.particles, 1.0 / options.particles);
   }
@@ -257,7 +258,7 @@ class FastSlam {
     if (!step.has_scan || step.measurements.empty()) {
       p.pose = sample_motion(p.pose, step.control, rng);
       if (step.has_scan) apply_negative_evidence(p, s, /*touched=*/{});
-      if (record) p.history.push(step.time_s, p.pose);
+      if (record) p.history.push({step.time_s, p.pose});
       return;
     }
 
@@ -368,7 +369,11 @@ class FastSlam {
     apply_negative_evidence(p, s, s.touched);
     if (Assoc::kUsesGroundTruth) p.next_id = next_known_id_;
     p.log_weight += log_weight;
-    if (record) p.history.push(step.time_s, p.pose);
+    if (record) p.history.push({step.time_s, p.pose});
+    StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements.size(), kNoLandmark)};
+    for (std::size_t k = 0; k < measurements.size(); ++k)
+      if (s.touched_of[k] >= 0) applied.landmarks[k] = s.touched[s.touched_of[k]].landmark.id;
+    p.decisions.push(std::move(applied));
   }
 
   // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from pose).

@@ -21,6 +21,8 @@ class Filter {
   virtual std::vector<TimedPose> best_trajectory() const = 0;
   virtual std::vector<Landmark> best_map() const = 0;
   virtual AssociationCounts best_association_counts() const = 0;
+  // The best particle's association decisions, one entry per scan with measurements, oldest first.
+  virtual std::vector<StepDecisions> best_decisions() const = 0;
   // Summed over all particles; shared nodes are counted once per particle that references them.
   virtual MapMemoryStats memory_stats() const = 0;
   virtual std::string map_name() const = 0;
@@ -45,6 +47,9 @@ class FilterImpl final : public Filter {
   }
   AssociationCounts best_association_counts() const override {
     return engine_.particle(engine_.best_particle()).counts;
+  }
+  std::vector<StepDecisions> best_decisions() const override {
+    return engine_.particle(engine_.best_particle()).decisions.to_vector();
   }
   MapMemoryStats memory_stats() const override { return engine_.memory_stats(); }
   std::string map_name() const override { return std::string(Map::kName); }

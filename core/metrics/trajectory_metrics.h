@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/engine/landmark.h"
-#include "core/engine/pose_history.h"
+#include "core/engine/persistent_history.h"
 #include "core/io/scenario.h"
 
 namespace arbor {

@@ -1,4 +1,4 @@
-// `arbor run`: one FastSLAM run over a scenario; writes DIR/result.json, trajectory.tum, map.csv.
+// `arbor run`: one FastSLAM run over a scenario; writes DIR/result.json, trajectory.tum, map.csv, associations.csv, steps.csv.
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
@@ -41,7 +41,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       ->capture_default_str();
   cmd->add_option("--prune", config->options.log_odds_prune, "Drop landmarks whose existence log-odds fall below this")
       ->capture_default_str();
-  cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv, steps.csv)")
+  cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
       ->required();
   cmd->add_flag("--quiet", *quiet, "No progress line");
   cmd->callback([=] {
@@ -64,7 +64,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       fmt::print("  step time median {:.3g} ms, p95 {:.3g} ms, wall {:.3g} s, peak RSS {:.1f} MB\n",
                  1e3 * r["step_time_median_s"].get<double>(), 1e3 * r["step_time_p95_s"].get<double>(),
                  r["wall_time_s"].get<double>(), r["peak_rss_bytes"].get<double>() / 1e6);
-      fmt::print("  wrote {}/result.json, trajectory.tum, map.csv\n", config->out_dir);
+      fmt::print("  wrote {}/result.json, trajectory.tum, map.csv, associations.csv, steps.csv\n", config->out_dir);
       return 0;
     };
   });

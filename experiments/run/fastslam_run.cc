@@ -22,6 +22,14 @@ using Json = nlohmann::json;
 
 Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
 
+// The format `arbor smooth --associations DIR` reads (experiments/run/smooth_run.h).
+std::string associations_csv(const std::vector<StepDecisions>& decisions) {
+  std::string out = "step,measurement,landmark\n";
+  for (const StepDecisions& d : decisions)
+    for (std::size_t j = 0; j < d.landmarks.size(); ++j) fmt::format_to(std::back_inserter(out), "{},{},{}\n", d.step, j, d.landmarks[j]);
+  return out;
+}
+
 }  // namespace
 
 Json provenance() {
@@ -137,6 +145,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     write_tum(dir + "trajectory_mean.tum", mean_trajectory);
     write_map_csv(dir + "map.csv", map);
     write_file_atomically(dir + "steps.csv", steps_csv);
+    write_file_atomically(dir + "associations.csv", associations_csv(filter->best_decisions()));
     // result.json last: its presence means the run finished and every other file is complete.
     write_file_atomically(dir + "result.json", r.dump(2) + "\n");
   }

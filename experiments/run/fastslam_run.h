@@ -1,6 +1,6 @@
 // One FastSLAM run from a scenario to its result files (DESIGN.md §9): DIR/result.json, DIR/trajectory.tum
-// (best particle), DIR/trajectory_mean.tum (weighted mean), DIR/map.csv (best particle's map) and
-// DIR/steps.csv (per-step time, N_eff, landmarks, NEES).
+// (best particle), DIR/trajectory_mean.tum (weighted mean), DIR/map.csv (best particle's map),
+// DIR/associations.csv (best particle's decisions) and DIR/steps.csv (per-step time, N_eff, landmarks, NEES).
 #ifndef ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 #define ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 

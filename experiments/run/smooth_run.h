@@ -34,8 +34,10 @@ struct SmoothOutput {
 SmoothOutput run_smoother(const SmoothConfig& config);
 
 // Association decisions of a FastSLAM result directory: DIR/associations.csv with the header
-// "step,measurement,landmark" and one row per measurement (landmark -1: new or spurious, left out), plus the
-// best particle's map (DIR/map.csv) for the landmarks' truth labels. Measurements without a row are left out.
+// "step,measurement,landmark" and one row per measurement (the landmark the best particle updated or
+// created; -1: judged spurious, left out), plus the best particle's map (DIR/map.csv) for the landmarks'
+// truth labels. Measurements without a row are left out. A landmark the particle later pruned still ties
+// the poses that saw it together; it has no truth label.
 SmootherAssociations read_association_decisions(const std::string& dir, const Scenario& scenario);
 
 }  // namespace arbor

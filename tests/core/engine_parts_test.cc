@@ -3,7 +3,7 @@
 
 #include <numeric>
 
-#include "core/engine/pose_history.h"
+#include "core/engine/persistent_history.h"
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
 #include "core/engine/landmark.h"
@@ -65,10 +65,10 @@ TEST(PoseHistory, CopiesShareTheirPastAndTheLastOneFreesIt) {
   const auto before = PoseHistory::live_nodes();
   {
     PoseHistory a;
-    for (int i = 0; i < 10; ++i) a.push(i, {double(i), 0, 0});
+    for (int i = 0; i < 10; ++i) a.push({double(i), {double(i), 0, 0}});
     PoseHistory b = a;
-    b.push(10, {10, 0, 0});
-    a.push(10, {-10, 0, 0});
+    b.push({10, {10, 0, 0}});
+    a.push({10, {-10, 0, 0}});
     EXPECT_EQ(PoseHistory::live_nodes() - before, 12);
     EXPECT_EQ(a.to_vector().back().pose.x, -10);
     EXPECT_EQ(b.to_vector().back().pose.x, 10);
@@ -81,7 +81,7 @@ TEST(PoseHistory, AVeryLongHistoryIsFreedWithoutRecursion) {
   const auto before = PoseHistory::live_nodes();
   {
     PoseHistory h;
-    for (int i = 0; i < 2'000'000; ++i) h.push(i, {});
+    for (int i = 0; i < 2'000'000; ++i) h.push({double(i), {}});
   }
   EXPECT_EQ(PoseHistory::live_nodes(), before);
 }

@@ -10,6 +10,7 @@
 
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
+#include "experiments/run/fastslam_run.h"
 #include "experiments/run/smooth_run.h"
 #include "experiments/sim/simulator.h"
 
@@ -75,6 +76,66 @@ TEST(SmoothRun, ReadsAssociationDecisions) {
     EXPECT_EQ(e.field(), "measurement");
   }
   EXPECT_THROW(read_association_decisions(fresh_dir("empty"), s), InputError);
+}
+
+// A FastSLAM run with known association decides exactly what the ground truth says (clutter spurious, every
+// other measurement its landmark), only under the run's own landmark ids: smoothing with its decisions must
+// build the same problem, so the same cost and the same trajectory.
+TEST(SmoothRun, AKnownAssociationRunsDecisionsAreTheTruthRenamed) {
+  const std::string dir = fresh_dir("known_run");
+  write_scenario(small_world(), dir + "/scenario.txt");
+  const Scenario s = read_scenario(dir + "/scenario.txt");
+  RunConfig run;
+  run.options.particles = 20;
+  run.options.threads = 1;
+  run.out_dir = dir + "/fastslam";
+  run_fastslam(s, run);
+
+  SmoothConfig config;
+  config.scenario_path = dir + "/scenario.txt";
+  const SmoothOutput truth = run_smoother(config);
+  config.associations = run.out_dir;
+  const SmoothOutput decided = run_smoother(config);
+  EXPECT_EQ(decided.result["associations_used"], truth.result["associations_used"]);
+  EXPECT_GT(decided.result["associations_used"].get<int>(), 0);
+  EXPECT_EQ(decided.smoother.summary.final_cost, truth.smoother.summary.final_cost);
+  EXPECT_EQ(decided.result["ate_rmse_m"], truth.result["ate_rmse_m"]);
+  EXPECT_EQ(decided.result["landmark_rmse_m"], truth.result["landmark_rmse_m"]);
+}
+
+// With a real strategy the decisions cover every measurement of every scan, name landmarks of the run's map
+// or -1, and the smoother given them (and the run's trajectory as its start) beats dead reckoning.
+TEST(SmoothRun, NearestNeighbourDecisionsCoverEveryMeasurementAndSolve) {
+  const std::string dir = fresh_dir("nn_run");
+  write_scenario(small_world(), dir + "/scenario.txt");
+  const Scenario s = read_scenario(dir + "/scenario.txt");
+  RunConfig run;
+  run.assoc = "nn";
+  run.options.particles = 20;
+  run.options.threads = 1;
+  run.out_dir = dir + "/fastslam";
+  run_fastslam(s, run);
+
+  const SmootherAssociations decisions = read_association_decisions(run.out_dir, s);
+  std::size_t measurements = 0, rows = 0;
+  for (std::size_t k = 0; k < s.steps.size(); ++k) {
+    measurements += s.steps[k].measurements.size();
+    for (std::int64_t id : decisions.landmark_ids[k]) rows += id >= 0;
+  }
+  std::ifstream csv(run.out_dir + "/associations.csv");
+  std::size_t lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, measurements + 1);  // the header and one row per measurement
+  EXPECT_EQ(decisions.associated_count(), rows);
+  EXPECT_GT(rows, measurements / 2);
+
+  SmoothConfig config;
+  config.scenario_path = dir + "/scenario.txt";
+  config.associations = run.out_dir;
+  config.init_dir = run.out_dir;
+  const SmoothOutput out = run_smoother(config);
+  EXPECT_TRUE(out.smoother.summary.usable);
+  EXPECT_LT(out.result["ate_rmse_m"].get<double>(), out.result["dead_reckoning_ate_m"].get<double>());
 }
 
 }  // namespace

@@ -1,0 +1,90 @@
+// What a particle remembers of its past (its poses, its association decisions) as a persistent singly linked
+// list, newest entry first. Recording prepends one node (O(1)); resampled particles share their common past,
+// so a copy is one reference-count increment instead of an O(T) vector copy (DESIGN.md §2).
+#ifndef ARBOR_CORE_ENGINE_PERSISTENT_HISTORY_H_
+#define ARBOR_CORE_ENGINE_PERSISTENT_HISTORY_H_
+
+#include <atomic>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/engine/landmark.h"
+#include "core/math/pose2.h"
+
+namespace arbor {
+
+template <typename Entry>
+class PersistentHistory {
+ public:
+  PersistentHistory() = default;
+  PersistentHistory(const PersistentHistory& o) : head_(o.head_) { retain(head_); }
+  PersistentHistory(PersistentHistory&& o) noexcept : head_(std::exchange(o.head_, nullptr)) {}
+  PersistentHistory& operator=(PersistentHistory o) noexcept {
+    std::swap(head_, o.head_);
+    return *this;
+  }
+  ~PersistentHistory() { release(head_); }
+
+  // Prepends an entry; shares every older node with the histories this one was copied from.
+  void push(Entry entry) {
+    head_ = new Node{{1}, head_, std::move(entry)};
+    live_nodes_counter().fetch_add(1, std::memory_order_relaxed);
+  }
+
+  bool empty() const { return head_ == nullptr; }
+  // Oldest first; O(T).
+  std::vector<Entry> to_vector() const {
+    std::vector<Entry> out;
+    for (const Node* n = head_; n; n = n->parent) out.push_back(n->entry);
+    return {out.rbegin(), out.rend()};
+  }
+  // Nodes ever allocated minus freed, all histories of this entry type together: the leak check of the tests.
+  static std::int64_t live_nodes() { return live_nodes_counter().load(std::memory_order_relaxed); }
+
+ private:
+  struct Node {
+    std::atomic<std::int32_t> refs;
+    Node* parent;
+    Entry entry;
+  };
+
+  static std::atomic<std::int64_t>& live_nodes_counter() {
+    static std::atomic<std::int64_t> counter{0};
+    return counter;
+  }
+  static void retain(Node* n) {
+    if (n) n->refs.fetch_add(1, std::memory_order_relaxed);
+  }
+  // Frees the nodes whose count drops to zero, walking towards the root iteratively: a 60,000-pose history
+  // released by recursion would overflow the stack.
+  static void release(Node* n) {
+    while (n && n->refs.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      Node* parent = n->parent;
+      delete n;
+      live_nodes_counter().fetch_sub(1, std::memory_order_relaxed);
+      n = parent;
+    }
+  }
+
+  Node* head_ = nullptr;
+};
+
+struct TimedPose {
+  double time_s = 0.0;
+  Pose2 pose;
+};
+
+// One scan's association decisions as the particle applied them: per measurement the landmark it updated
+// or created, or kNoLandmark where the measurement was judged spurious (clutter).
+struct StepDecisions {
+  std::int64_t step = 0;
+  std::vector<LandmarkId> landmarks;
+};
+
+using PoseHistory = PersistentHistory<TimedPose>;
+using DecisionHistory = PersistentHistory<StepDecisions>;
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ENGINE_PERSISTENT_HISTORY_H_
