@@ -14,7 +14,7 @@
 #include <fmt/core.h>
 
 #include "core/io/scenario_format.h"
-#include "variants/smoothing/isam_graph.h"
+#include "experiments/loaders/isam_factor_graph.h"
 #include "variants/smoothing/smoother.h"
 
 namespace arbor {
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   const std::string isam =
       env_or("ARBOR_ISAM_FILE", std::string(ARBOR_SOURCE_DIR) + "/data/victoria_park/isam_gtsam/victoria_park.txt");
   if (std::filesystem::exists(isam)) {
-    register_graph("victoria_park_isam", std::make_shared<const FactorGraph>(read_isam_graph(isam)));
+    register_graph("victoria_park_isam", std::make_shared<const FactorGraph>(read_isam_factor_graph(isam)));
   } else {
     fmt::print(stderr, "smoother_benchmark: {} not found (set ARBOR_ISAM_FILE); skipping Victoria Park\n", isam);
   }

@@ -17,7 +17,7 @@
 #include "core/metrics/trajectory_metrics.h"
 #include "experiments/run/fastslam_run.h"
 #include "variants/smoothing/g2o_writer.h"
-#include "variants/smoothing/isam_graph.h"
+#include "experiments/loaders/isam_factor_graph.h"
 
 namespace arbor {
 namespace {
@@ -87,7 +87,7 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
   std::unordered_map<std::int64_t, std::int32_t> truth_label;  // landmark id -> ground-truth id, where known
   SmootherOptions options = config.options;
   if (!config.isam_path.empty()) {
-    graph = read_isam_graph(config.isam_path, options.prior_floor_sigma);
+    graph = read_isam_factor_graph(config.isam_path, options.prior_floor_sigma);
   } else {
     scenario = read_scenario(config.scenario_path);
     SmootherAssociations associations;

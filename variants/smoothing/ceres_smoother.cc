@@ -159,7 +159,7 @@ class WarmStart {
   }
 
   // True when the factor lists are ordered by stage, which the staged adding above relies on (graphs from
-  // build_factor_graph and read_isam_graph are: factors follow the poses in time order).
+  // build_factor_graph and isam_factor_graph are: factors follow the poses in time order).
   static bool stage_ordered(const FactorGraph& graph) {
     const auto ordered = [](const auto& factors, auto pose_of) {
       for (std::size_t i = 1; i < factors.size(); ++i)
