@@ -29,9 +29,11 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                   "known (the scenario's ground-truth ids) or a FastSLAM result directory (its best particle's "
                   "decisions, DIR/associations.csv)")
       ->capture_default_str();
-  cmd->add_option("--init", config->init_dir,
-                  "Initial values from a FastSLAM result directory (trajectory.tum; map.csv too when it is also the "
-                  "association source) instead of dead reckoning; turns the warm start off");
+  cmd->add_option("--init", config->init,
+                  "Initial values: auto (the FastSLAM run the associations come from, else dead reckoning), "
+                  "dead-reckoning, or a FastSLAM result directory (trajectory.tum; map.csv too when it is also the "
+                  "association source). Starting from a run turns the warm start off")
+      ->capture_default_str();
   cmd->add_option("--loss", *loss, "Robust loss on landmark observations: none, huber, cauchy")
       ->check(CLI::IsMember({"none", "huber", "cauchy"}))
       ->capture_default_str();

@@ -19,7 +19,10 @@ struct SmoothConfig {
   std::string scenario_path;       // a scenario file, or
   std::string isam_path;           // a pre-associated iSAM/GTSAM file (then no scenario)
   std::string associations = "known";  // "known" (ground-truth ids) or a FastSLAM result directory
-  std::string init_dir;            // optional: initial values from a FastSLAM result (trajectory.tum, map.csv)
+  // Initial values: "auto" (the FastSLAM run the associations come from, else dead reckoning),
+  // "dead-reckoning", or a FastSLAM result directory (trajectory.tum; map.csv too when it is also the
+  // association source).
+  std::string init = "auto";
   std::string g2o_path;            // optional: export the problem
   SmootherOptions options;
   std::string out_dir;             // empty: compute but write nothing
