@@ -5,13 +5,9 @@
 
 #include <fmt/core.h>
 
-#ifndef ARBOR_GIT_COMMIT
-#define ARBOR_GIT_COMMIT "unknown"
-#endif
-
 namespace arbor {
 
-std::string git_commit() { return ARBOR_GIT_COMMIT; }
+// git_commit() is generated at build time (cmake/GitCommit.cmake).
 
 std::string compiler() {
 #if defined(__clang__)

@@ -6,7 +6,7 @@
 
 namespace arbor {
 
-std::string git_commit();   // short hash, '+' appended when the tree had uncommitted changes at configure time
+std::string git_commit();   // short hash, '+' appended when the tree had uncommitted changes when built
 std::string compiler();     // e.g. "gcc-12.2.0"
 std::string host_name();
 std::string build_type();   // "release" or "debug" (NDEBUG), plus "+asan"/"+tsan" when sanitized
