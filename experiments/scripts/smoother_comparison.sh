@@ -1,32 +1,80 @@
 #!/bin/bash
-# Runs the smoother and FastSLAM (1.0/2.0, several particle counts) with true association on the same
-# simulated worlds, keeping result.json, trajectory.tum and the truth track (truth.tum) of each, for
-# analysis/smoother_vs_fastslam.py. Usage: experiments/scripts/smoother_comparison.sh OUT_DIR [ARBOR_BINARY]
+# The smoother beside FastSLAM on the same data (issue 6, DESIGN.md §5): simulated worlds and UTIAS MRCLAM
+# robot 1 with true association (the smoother as the accuracy reference), and Victoria Park, which has no
+# true association, with the smoother given each FastSLAM run's own decisions ("how far is FastSLAM+JCBB
+# from the optimum given its associations?"). Writes OUT/<dataset>/<run>/result.json; a run whose
+# result.json exists is skipped, so an interrupted comparison resumes. Then:
+#   /usr/bin/python3 analysis/smoother_vs_fastslam.py OUT
+# Usage: experiments/scripts/smoother_comparison.sh OUT [ARBOR_BINARY]
+# Scale with WORLDS (simulated world seeds), SEEDS (FastSLAM seeds on the real data), PARTICLES.
 set -euo pipefail
-out=${1:?usage: $0 OUT_DIR [ARBOR_BINARY]}
-arbor=${2:-build/bin/arbor}
+out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
+arbor=$(realpath "${2:-build/bin/arbor}")
+worlds=${WORLDS:-"1 2 3"}
 seeds=${SEEDS:-"1 2 3"}
-particles=${PARTICLES:-"10 100"}
-mkdir -p "$out"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-for seed in $seeds; do
-  name=uniform200_s${seed}
-  scenario=$work/$name.txt
-  "$arbor" simulate --world uniform --landmarks 200 --steps 500 --seed "$seed" --out "$scenario" > /dev/null
-  mkdir -p "$out/$name"
-  # Truth positions in TUM form (identity rotation), so the analysis needs no scenario file.
-  awk '$1 == "step" { t = $2 } $1 == "truth" { printf "%s %s %s 0 0 0 0 1\n", t, $2, $3 }' "$scenario" \
-    > "$out/$name/truth.tum"
-  "$arbor" smooth --scenario "$scenario" --quiet --out "$work/sm"
-  mkdir -p "$out/$name/smoother" && cp "$work/sm/result.json" "$work/sm/trajectory.tum" "$out/$name/smoother/"
-  for filter in fastslam1 fastslam2; do
-    for m in $particles; do
-      "$arbor" run --scenario "$scenario" --filter "$filter" --particles "$m" --seed 1 --threads 2 --quiet \
-        --out "$work/fs" > /dev/null
-      dir=$out/$name/${filter}_m$m
-      mkdir -p "$dir" && cp "$work/fs/result.json" "$work/fs/trajectory.tum" "$dir/"
+particles=${PARTICLES:-"10 100 1000"}
+cd "$(dirname "$0")/../.."  # the converters default to the data shipped in data/
+scenarios=out/scenarios     # shared with scripts/main.sh, which converts Victoria Park the same way
+mkdir -p "$out" "$scenarios"
+
+# Runs one command into DIR unless DIR/result.json exists; keeps result.json, trajectory.tum and
+# associations.csv (for the smoother runs that follow) and drops the per-step files.
+once() {
+  local dir=$1
+  shift
+  [ -f "$dir/result.json" ] && return 0
+  rm -rf "$dir.partial"
+  "$arbor" "$@" --quiet --out "$dir.partial" > /dev/null
+  rm -f "$dir.partial/steps.csv" "$dir.partial/trajectory_mean.tum"
+  mv "$dir.partial" "$dir"
+}
+
+# FastSLAM runs of FILTER x ASSOC x PARTICLES x SEEDS on SCENARIO into OUT/DATASET.
+fastslam() {
+  local dataset=$1 scenario=$2 filter=$3 assoc=$4 seed_list=$5
+  for m in $particles; do
+    for seed in $seed_list; do
+      once "$out/$dataset/${filter}_${assoc}_m${m}_s${seed}" run --scenario "$scenario" --filter "$filter" \
+        --assoc "$assoc" --particles "$m" --seed "$seed" --threads 2
     done
   done
-  echo "done $name"
+}
+
+# The smoother on the decisions of every FastSLAM run of ASSOC with 100 particles, without and with a
+# robust loss (a wrong decision is an outlier to least squares).
+smoother_on_decisions() {
+  local dataset=$1 scenario=$2 assoc=$3 seed_list=$4
+  for seed in $seed_list; do
+    local source=$out/$dataset/fastslam2_${assoc}_m100_s${seed}
+    [ -d "$source" ] || continue
+    once "$out/$dataset/smoother_${assoc}_m100_s${seed}" smooth --scenario "$scenario" --associations "$source"
+    once "$out/$dataset/smoother_${assoc}_m100_s${seed}_cauchy" smooth --scenario "$scenario" \
+      --associations "$source" --loss cauchy
+  done
+}
+
+for w in $worlds; do
+  dataset=simulated_w$w
+  scenario=$scenarios/$dataset.scn
+  [ -f "$scenario" ] || "$arbor" simulate --seed "$w" --clutter 1 --out "$scenario" > /dev/null
+  once "$out/$dataset/smoother_known" smooth --scenario "$scenario"
+  for filter in fastslam1 fastslam2; do fastslam $dataset "$scenario" $filter known 1; done
+  particles=100 fastslam $dataset "$scenario" fastslam2 jcbb 1
+  smoother_on_decisions $dataset "$scenario" jcbb 1
+  echo "done $dataset"
 done
+
+scenario=$scenarios/utias1.scn
+[ -f "$scenario" ] || "$arbor" convert --from utias-mrclam --robot 1 --out "$scenario" > /dev/null
+once "$out/utias1/smoother_known" smooth --scenario "$scenario"
+for filter in fastslam1 fastslam2; do fastslam utias1 "$scenario" $filter known "$seeds"; done
+echo "done utias1"
+
+scenario=$scenarios/victoria_park.scn
+[ -f "$scenario" ] || "$arbor" convert --from victoria-park --max-gps-speed 8 --out "$scenario" > /dev/null
+for assoc in nn jcbb; do
+  fastslam victoria_park "$scenario" fastslam2 $assoc "$seeds"
+  smoother_on_decisions victoria_park "$scenario" $assoc "$seeds"
+done
+particles=100 fastslam victoria_park "$scenario" fastslam1 jcbb "$seeds"
+echo "done victoria_park"
