@@ -36,11 +36,13 @@ def describe(run_dir, result):
         loss = "" if c.get("loss", "none") == "none" else f", {c['loss']} loss"
         if source == "known":
             return "smoother, true association" + loss, "smoother", None
-        with open(os.path.join(source if os.path.isabs(source) else os.path.join(run_dir, source),
-                               "result.json")) as f:
+        # The source run sits beside this one (result.json holds the absolute path where it was run, which a
+        # copied results folder no longer has).
+        name = os.path.basename(os.path.normpath(source))
+        with open(os.path.join(os.path.dirname(run_dir), name, "result.json")) as f:
             s = json.load(f)["config"]
         label = f"smoother on {FILTER_NAMES[s['filter']]}+{s['assoc']} M={s['particles']} decisions{loss}"
-        return label, "smoother", os.path.basename(os.path.normpath(source))
+        return label, "smoother", name
     return f"{FILTER_NAMES[c['filter']]}, {c['assoc']}, M={c['particles']}", "fastslam", None
 
 

@@ -1,10 +1,8 @@
 // The smoother as the accuracy reference: on small simulated worlds with true association its trajectory
 // error is below FastSLAM's on the same data, and below dead reckoning's.
 //
-// The error is the SE(2)-aligned ATE. The simulated robot takes no scan at its known initial pose, so the
-// map's rotation about that pose rests on the first odometry reading alone: every estimator inherits that
-// reading's heading error (0.01-0.04 rad here) as a rigid rotation of everything, and the unaligned ATE
-// mostly measures this one shared draw. Aligning removes it and compares what the estimators control.
+// The error is the SE(2)-aligned ATE, which compares what the estimators control: the map's frame rests on
+// the start pose and its first scan, and a rigid offset of everything says little about either estimator.
 #include <gtest/gtest.h>
 
 #include "core/metrics/trajectory_metrics.h"
