@@ -68,7 +68,7 @@ def lines_for(df, x, min_points=2, collapse_identical_maps=False):
     df = df[df[x].notna()]
     by = [c for c in varying(df, METHOD + CONTEXT) if c != x]
     if collapse_identical_maps:  # for accuracy figures only: timings do differ between back ends
-        by = drop_identical_map_backends(df, by, x)
+        by, df = drop_identical_map_backends(df, by, x)
     if not by:
         if df[x].nunique() >= min_points:
             yield "all runs", df
@@ -83,12 +83,15 @@ def lines_for(df, x, min_points=2, collapse_identical_maps=False):
 
 def drop_identical_map_backends(df, by, x):
     """Map back ends give bit-identical filter output (a tested property); when the results confirm it, one
-    line stands for all of them instead of one per back end."""
+    line stands for all of them instead of one per back end. Returns (by, rows): the rows then hold each run
+    once, because copies of a run are not independent samples (counting them would shrink every CI)."""
     if "map" not in by or "ate_rmse_m" not in df:
-        return by
+        return by, df
     rest = [c for c in by if c != "map"] + [c for c in (x, "seed") if c in df and c not in by]
     same = df.groupby(rest, dropna=False)["ate_rmse_m"].nunique(dropna=False).max() <= 1 if rest else False
-    return [c for c in by if c != "map"] if same else by
+    if not same:
+        return by, df
+    return [c for c in by if c != "map"], df.drop_duplicates(subset=rest)
 
 
 def label(row, columns):
