@@ -56,6 +56,10 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
       ->capture_default_str();
   cmd->add_option("--threads", config->options.threads, "Ceres threads (Jacobians and linear algebra)")
       ->capture_default_str();
+  cmd->add_option("--marginals-max-poses", config->options.pose_marginals_max_poses,
+                  "Compute the poses' marginal covariances (for the NEES against ground-truth poses) only up to this "
+                  "many poses; 0: never")
+      ->capture_default_str();
   cmd->add_option("--g2o", config->g2o_path, "Also write the problem (initial values, factors) as a g2o file");
   cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv)")->required();
   cmd->add_flag("--verbose", config->options.verbose, "Ceres's per-iteration log");
@@ -81,9 +85,11 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                  s.landmarks, s.factors, s.iterations, s.initial_cost, s.final_cost, s.termination);
       fmt::print("  solve {:.3f} s wall, {:.3f} s CPU (build {:.3f} s), gradient max norm {:.3g}\n", s.solve_time_s,
                  s.solve_cpu_s, s.build_time_s, s.gradient_max_norm);
-      fmt::print("  ATE RMSE {} m (SE(2)-aligned {} m; dead reckoning {} m{}), landmark RMSE {} m\n",
+      fmt::print("  ATE RMSE {} m (SE(2)-aligned {} m; dead reckoning {} m{}), landmark RMSE {} m, NEES mean {}{}\n",
                  show(r["ate_rmse_m"]), show(r["ate_aligned_rmse_m"]), show(r["dead_reckoning_ate_m"]),
-                 r["ate_aligned"].get<bool>() ? ", aligned to GPS" : "", show(r["landmark_rmse_m"]));
+                 r["ate_aligned"].get<bool>() ? ", aligned to GPS" : "", show(r["landmark_rmse_m"]),
+                 show(r["nees_mean"]),
+                 s.pose_marginals ? fmt::format(" (marginals {:.3f} s)", s.marginals_time_s) : std::string());
       fmt::print("  wrote {}/result.json, trajectory.tum, map.csv{}\n", config->out_dir,
                  config->g2o_path.empty() ? "" : ", " + config->g2o_path);
       return s.usable ? 0 : 1;

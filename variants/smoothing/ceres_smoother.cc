@@ -281,6 +281,24 @@ SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOption
     result.poses.push_back({p.time_s, p.step, p.source_id,
                             Pose2::from_vector(Vec3(data.pose(i)[0], data.pose(i)[1], data.pose(i)[2]))});
   }
+  if (s.usable && data.pose_count <= options.pose_marginals_max_poses) {
+    const auto marginals_start = Clock::now();
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::SPARSE_QR;  // exact; the gauge prior makes J full rank
+    covariance_options.num_threads = options.threads;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<std::pair<const double*, const double*>> blocks;
+    for (int i = 0; i < data.pose_count; ++i) blocks.emplace_back(data.pose(i), data.pose(i));
+    if (covariance.Compute(blocks, &problem)) {
+      s.pose_marginals = true;
+      for (int i = 0; i < data.pose_count; ++i) {
+        Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block;
+        covariance.GetCovarianceBlock(data.pose(i), data.pose(i), block.data());
+        result.poses[i].covariance = block;
+      }
+    }
+    s.marginals_time_s = seconds_since(marginals_start);
+  }
   std::vector<int> observations(data.landmark_count, 0);
   std::vector<Mat2> information(data.landmark_count, Mat2::Zero());
   const auto pose_at = [&](int i) { return Pose2{data.pose(i)[0], data.pose(i)[1], data.pose(i)[2]}; };

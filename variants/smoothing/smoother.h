@@ -51,6 +51,9 @@ struct SmootherOptions {
   int warm_start_poses = 500;
   int warm_start_iterations = 10;
   int threads = 1;
+  // Marginal covariance of every pose (ceres::Covariance, sparse QR of the Jacobian at the solution), for
+  // the NEES of `arbor smooth`; skipped above this many poses, where it costs more than the solve.
+  int pose_marginals_max_poses = 10000;
   double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-10;
@@ -104,6 +107,8 @@ struct SmootherSummary {
   std::string linear_solver;
   std::string report;              // Ceres's BriefReport()
   int poses = 0, landmarks = 0, factors = 0, residuals = 0, parameters = 0;
+  bool pose_marginals = false;     // whether SmoothedPose::covariance holds the marginals
+  double marginals_time_s = 0.0;   // their computation (wall clock), not part of solve_time_s
 };
 
 struct SmoothedPose {
@@ -111,6 +116,7 @@ struct SmoothedPose {
   int step = -1;
   std::int64_t source_id = 0;
   Pose2 pose;
+  Mat3 covariance = Mat3::Zero();  // marginal (x, y, theta), when summary.pose_marginals
 };
 struct SmoothedLandmark {
   std::int64_t id = 0;

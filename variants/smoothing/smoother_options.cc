@@ -52,6 +52,7 @@ bool SmootherOptions::validate(std::string* why) const {
   if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) return fail(fmt::format("loss scale {} must be > 0", loss_scale));
   if (max_iterations < 0) return fail(fmt::format("max_iterations {} must be >= 0", max_iterations));
   if (warm_start_poses < 0 || warm_start_iterations < 0) return fail("warm start sizes must be >= 0");
+  if (pose_marginals_max_poses < 0) return fail("pose_marginals_max_poses must be >= 0");
   if (threads < 1) return fail(fmt::format("threads {} must be >= 1", threads));
   if (!(function_tolerance >= 0.0) || !(gradient_tolerance >= 0.0) || !(parameter_tolerance >= 0.0))
     return fail("tolerances must be >= 0");
