@@ -8,19 +8,17 @@
 #include <tbb/info.h>
 
 #include "core/io/atomic_file.h"
-#include "core/io/build_info.h"
 #include "core/io/trajectory_io.h"
 #include "core/metrics/run_statistics.h"
 #include "core/metrics/trajectory_metrics.h"
 #include "experiments/run/progress.h"
+#include "experiments/run/result_fields.h"
 #include "variants/registry.h"
 
 namespace arbor {
 namespace {
 
 using Json = nlohmann::json;
-
-Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
 
 // The format `arbor smooth --associations DIR` reads (experiments/run/smooth_run.h).
 std::string associations_csv(const std::vector<StepDecisions>& decisions) {
@@ -31,10 +29,6 @@ std::string associations_csv(const std::vector<StepDecisions>& decisions) {
 }
 
 }  // namespace
-
-Json provenance() {
-  return {{"commit", git_commit()}, {"host", host_name()}, {"compiler", compiler()}, {"build", build_type()}};
-}
 
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const auto wall_start = std::chrono::steady_clock::now();
@@ -82,18 +76,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const AssociationCounts counts = filter->best_association_counts();
   const MapMemoryStats memory = filter->memory_stats();
 
-  // Simulation and UTIAS carry truth poses in the filter's frame; GPS tracks (Victoria Park) need alignment.
-  std::vector<TimedPosition> truth = truth_positions(scenario);
-  const bool align = truth.empty() && !scenario.truth_track.empty();
-  if (align) truth = scenario.truth_track;
-  const auto ate = absolute_trajectory_error(best, truth, align);
-  const auto ate_mean = absolute_trajectory_error(mean_trajectory, truth, align);
-  // SE(2)-aligned ATE, comparable with the smoother's and with other tools whose frame may differ.
-  const auto ate_aligned = absolute_trajectory_error(best, truth, true);
-  const auto ate_dr = absolute_trajectory_error(dead_reckoning(scenario), truth, align);
-  const auto lm_rmse = landmark_rmse(map, scenario.truth_landmarks, ate ? ate->alignment : Pose2{});
-  double nees_mean = 0.0;
-  for (double v : out.nees) nees_mean += v / out.nees.size();
+  const EvaluationTruth truth = evaluation_truth(scenario);
+  const auto ate_mean = absolute_trajectory_error(mean_trajectory, truth.positions, truth.align);
   const std::size_t particles = static_cast<std::size_t>(config.options.particles);
 
   Json& r = out.result;
@@ -110,13 +94,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"log_odds_prune", config.options.log_odds_prune}};
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
-  r["ate_rmse_m"] = ate ? Json(ate->rmse_m) : Json(nullptr);
+  r.update(accuracy_fields(scenario, truth, best, map));
   r["ate_mean_rmse_m"] = ate_mean ? Json(ate_mean->rmse_m) : Json(nullptr);
-  r["ate_aligned"] = align;
-  r["ate_aligned_rmse_m"] = ate_aligned ? Json(ate_aligned->rmse_m) : Json(nullptr);
-  r["dead_reckoning_ate_m"] = ate_dr ? Json(ate_dr->rmse_m) : Json(nullptr);
-  r["landmark_rmse_m"] = optional_number(lm_rmse);
-  r["nees_mean"] = out.nees.empty() ? Json(nullptr) : Json(nees_mean);
+  r["nees_mean"] = mean_or_null(out.nees);
   r["assoc_precision"] = optional_number(counts.precision());
   r["assoc_recall"] = optional_number(counts.recall());
   r["assoc_f1"] = optional_number(counts.f1());

@@ -31,9 +31,6 @@ struct RunOutput {
 // names or options.
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config);
 
-// The fields every result.json carries about where it came from (commit, host, compiler, build).
-nlohmann::json provenance();
-
 }  // namespace arbor
 
 #endif  // ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_

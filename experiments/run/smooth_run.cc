@@ -2,7 +2,6 @@
 #ifdef ARBOR_HAVE_SMOOTHER
 #include "experiments/run/smooth_run.h"
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <unordered_map>
@@ -16,7 +15,7 @@
 #include "core/io/trajectory_io.h"
 #include "core/metrics/run_statistics.h"
 #include "core/metrics/trajectory_metrics.h"
-#include "experiments/run/fastslam_run.h"
+#include "experiments/run/result_fields.h"
 #include "variants/smoothing/g2o_writer.h"
 #include "experiments/loaders/isam_factor_graph.h"
 
@@ -25,16 +24,15 @@ namespace {
 
 using Json = nlohmann::json;
 
-Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
-
-SmootherInitialGuess read_initial_guess(const std::string& dir, bool with_map) {
+// The run's trajectory, and its map (run_map: the associations' run's map.csv, already read) where the
+// associations come from the same run: landmark ids are the run's own, so only then do they match.
+SmootherInitialGuess read_initial_guess(const std::string& dir, const std::vector<Landmark>* run_map) {
   SmootherInitialGuess guess;
   for (const TimedPose& p : read_tum(dir + "/trajectory.tum")) guess.trajectory.push_back({p.time_s, p.pose});
   std::stable_sort(guess.trajectory.begin(), guess.trajectory.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  // Landmark ids are the run's own, so its map only seeds landmarks when the associations come from it too.
-  if (with_map)
-    for (const Landmark& l : read_map_csv(dir + "/map.csv")) guess.landmarks[l.id] = l.mean;
+  if (run_map)
+    for (const Landmark& l : *run_map) guess.landmarks[l.id] = l.mean;
   return guess;
 }
 
@@ -94,12 +92,14 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
   } else {
     scenario = read_scenario(config.scenario_path);
     SmootherAssociations associations;
+    std::vector<Landmark> run_map;  // of the run the associations come from
     if (config.associations == "known") {
       associations = SmootherAssociations::from_truth(scenario);
       for (const TruthLandmark& t : scenario.truth_landmarks) truth_label[t.id] = t.id;
     } else {
       associations = read_association_decisions(config.associations, scenario);
-      for (const Landmark& l : read_map_csv(config.associations + "/map.csv")) truth_label[l.id] = l.truth_label;
+      run_map = read_map_csv(config.associations + "/map.csv");
+      for (const Landmark& l : run_map) truth_label[l.id] = l.truth_label;
     }
     // A run's own trajectory is where its associations make sense: on Victoria Park, LM from dead reckoning
     // (93 m off) with a run's decisions stalls at 96 m ATE even with the warm start, and from the run's
@@ -108,16 +108,14 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
                : config.init == "dead-reckoning" ? "" : config.init;
     SmootherInitialGuess guess;
     if (!init_dir.empty()) {
-      guess = read_initial_guess(init_dir, init_dir == config.associations);
+      guess = read_initial_guess(init_dir, init_dir == config.associations ? &run_map : nullptr);
       options.warm_start_poses = 0;  // the guess is the starting point
     }
     graph = build_factor_graph(scenario, associations, options, init_dir.empty() ? nullptr : &guess);
     r["associations_used"] = associations.associated_count();
   }
   // Pose marginals serve only the NEES, which needs ground-truth poses.
-  const bool has_truth_poses = std::any_of(scenario.steps.begin(), scenario.steps.end(),
-                                           [](const ScenarioStep& step) { return step.truth_pose.has_value(); });
-  if (!has_truth_poses) options.pose_marginals_max_poses = 0;
+  if (!scenario.has_truth_poses()) options.pose_marginals_max_poses = 0;
   if (!config.g2o_path.empty()) write_g2o(graph, config.g2o_path);
   out.smoother = solve_factor_graph(graph, options);
   const SmootherResult& sm = out.smoother;
@@ -135,17 +133,6 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
     map.push_back(lm);
   }
 
-  // As `arbor run`: truth poses in the same frame where simulated; a GPS track needs SE(2) alignment.
-  std::vector<TimedPosition> truth = truth_positions(scenario);
-  const bool align = truth.empty() && !scenario.truth_track.empty();
-  if (align) truth = scenario.truth_track;
-  const auto ate = absolute_trajectory_error(trajectory, truth, align);
-  // Also SE(2)-aligned where the frames already agree: without a scan at the known initial pose, the map's
-  // rotation rests on the first odometry reading alone, and that one draw dominates the unaligned error.
-  const auto ate_aligned = align ? ate : absolute_trajectory_error(trajectory, truth, true);
-  const auto ate_dr = config.isam_path.empty() ? absolute_trajectory_error(dead_reckoning(scenario), truth, align)
-                                               : std::nullopt;
-  const auto lm_rmse = landmark_rmse(map, scenario.truth_landmarks, ate ? ate->alignment : Pose2{});
   const SmootherSummary& s = sm.summary;
 
   r["config"] = {{"scenario", config.scenario_path},
@@ -163,11 +150,8 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
                  {"threads", options.threads}};
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
-  r["ate_rmse_m"] = ate ? Json(ate->rmse_m) : Json(nullptr);
-  r["ate_aligned"] = align;
-  r["ate_aligned_rmse_m"] = ate_aligned ? Json(ate_aligned->rmse_m) : Json(nullptr);
-  r["dead_reckoning_ate_m"] = ate_dr ? Json(ate_dr->rmse_m) : Json(nullptr);
-  r["landmark_rmse_m"] = optional_number(lm_rmse);
+  // As `arbor run`. The iSAM file has no truth, so these are null for it.
+  r.update(accuracy_fields(scenario, evaluation_truth(scenario), trajectory, map));
   // NEES of the marginal pose covariances at the poses with ground truth (simulation, UTIAS): a consistent
   // smoother averages 3, the pose's dimension.
   std::vector<double> nees;
@@ -175,9 +159,7 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
     for (const SmoothedPose& p : sm.poses)
       if (p.step >= 0 && scenario.steps[p.step].truth_pose)
         nees.push_back(pose_nees(p.pose, p.covariance, *scenario.steps[p.step].truth_pose));
-  double nees_mean = 0.0;
-  for (double v : nees) nees_mean += v / nees.size();
-  r["nees_mean"] = nees.empty() ? Json(nullptr) : Json(nees_mean);
+  r["nees_mean"] = mean_or_null(nees);
   // The smoother takes its associations as given; their quality is scored in the run they came from.
   r["assoc_precision"] = nullptr;
   r["assoc_recall"] = nullptr;
