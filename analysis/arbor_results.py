@@ -68,7 +68,7 @@ def lines_for(df, x, min_points=2, collapse_identical_maps=False):
     df = df[df[x].notna()]
     by = [c for c in varying(df, METHOD + CONTEXT) if c != x]
     if collapse_identical_maps:  # for accuracy figures only: timings do differ between back ends
-        by, df = drop_identical_map_backends(df, by, x)
+        by, df = drop_identical_map_backends(df, by, [x, "seed"])
     if not by:
         if df[x].nunique() >= min_points:
             yield "all runs", df
@@ -81,13 +81,14 @@ def lines_for(df, x, min_points=2, collapse_identical_maps=False):
         yield label(g.iloc[0], shown), g
 
 
-def drop_identical_map_backends(df, by, x):
+def drop_identical_map_backends(df, by, keys):
     """Map back ends give bit-identical filter output (a tested property); when the results confirm it, one
-    line stands for all of them instead of one per back end. Returns (by, rows): the rows then hold each run
-    once, because copies of a run are not independent samples (counting them would shrink every CI)."""
+    line stands for all of them instead of one per back end. `keys`: the columns besides `by` that tell one
+    run from another (x, seed, scenario). Returns (by, rows): the rows then hold each run once, because
+    copies of a run are not independent samples (counting them would shrink every CI)."""
     if "map" not in by or "ate_rmse_m" not in df:
         return by, df
-    rest = [c for c in by if c != "map"] + [c for c in (x, "seed") if c in df and c not in by]
+    rest = [c for c in by if c != "map"] + [c for c in dict.fromkeys(keys) if c in df and c not in by]
     same = df.groupby(rest, dropna=False)["ate_rmse_m"].nunique(dropna=False).max() <= 1 if rest else False
     if not same:
         return by, df

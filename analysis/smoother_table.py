@@ -23,13 +23,7 @@ def make(df, out_dir, results_path=None):
         return []
     joined["ate_ratio"] = joined["ate_rmse_m"] / joined["ate_rmse_m_smoother"]
     groups = [c for c in ar.METHOD + ["particles"] if c in joined.columns]
-    # Map back ends give bit-identical filter output (a tested property); where the rows confirm it, one row
-    # stands for all of them.
-    if "map" in groups:
-        rest = [c for c in groups if c != "map"] + scenario + ["seed"]
-        if joined.groupby(rest, dropna=False)["ate_rmse_m"].nunique(dropna=False).max() <= 1:
-            groups.remove("map")
-            joined = joined.drop_duplicates(subset=rest)  # copies are not replicates: count each run once
+    groups, joined = ar.drop_identical_map_backends(joined, groups, scenario + ["seed"])
     rows = []
     for key, g in joined.groupby(groups, sort=True):
         ratio, ratio_ci = ar.mean_ci(g["ate_ratio"])
