@@ -41,7 +41,8 @@ struct Particle {
   Map map;
   PoseHistory history;
   DecisionHistory decisions;    // only scans with measurements; for the smoother (`arbor smooth --associations`)
-  LandmarkId next_id = 0;       // ids in creation order: the same in every back end
+  LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end); with
+                                // known association ids come from the engine-wide truth table instead
   AssociationCounts counts;     // this lineage's decisions scored against ground truth (metrics only)
 };
 
@@ -257,7 +258,10 @@ class FastSlam {
     const bool record = step.has_scan || step.truth_pose.has_value();
     if (!step.has_scan || step.measurements.empty()) {
       p.pose = sample_motion(p.pose, step.control, rng);
-      if (step.has_scan) apply_negative_evidence(p, s, /*touched=*/{});
+      if (step.has_scan) {
+        gather_nearby(p, p.pose, s);
+        apply_negative_evidence(p, s, /*touched=*/{});
+      }
       if (record) p.history.push({step.time_s, p.pose});
       return;
     }
@@ -273,7 +277,7 @@ class FastSlam {
       p.pose = sample_motion(p.pose, step.control, rng);
       association_pose = p.pose;
     }
-    gather_candidates(p, association_pose, fastslam2 ? P_pred : Mat3::Zero(), step, s);
+    gather_candidates(p, association_pose, P_pred, step, s);
     decide(p, step, s);
 
     // Collect the landmarks the decisions touch (copies; the map is written once at the end).
@@ -286,7 +290,7 @@ class FastSlam {
       int t = 0;
       while (t < static_cast<int>(s.touched.size()) && s.touched[t].landmark.id != id) ++t;
       if (t == static_cast<int>(s.touched.size())) {
-        const Landmark* lm = p.map.find(id);
+        const Landmark* lm = find_landmark(p, s, id);
         ARBOR_CHECK(lm != nullptr, "association paired with landmark {} that the map does not hold", id);
         s.touched.push_back({*lm, false});
       }
@@ -367,7 +371,6 @@ class FastSlam {
       else p.map.set(t.landmark);
     }
     apply_negative_evidence(p, s, s.touched);
-    if (Assoc::kUsesGroundTruth) p.next_id = next_known_id_;
     p.log_weight += log_weight;
     if (record) p.history.push({step.time_s, p.pose});
     StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements.size(), kNoLandmark)};
@@ -378,8 +381,7 @@ class FastSlam {
 
   // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from pose).
   void gather_candidates(const Particle<Map>& p, const Pose2& pose, const Mat3& P, const ScenarioStep& step, Scratch& s) {
-    s.nearby.clear();
-    p.map.visit_near(query_box(pose), [&](const Landmark& lm) { s.nearby.push_back(lm); });
+    gather_nearby(p, pose, s);
     if (Assoc::kUsesGroundTruth) return;
     AssociationProblem& problem = s.problem;
     problem.measurements.clear();
@@ -406,6 +408,21 @@ class FastSlam {
     }
   }
 
+  // s.nearby: every landmark in the query box around pose, ascending id (the map concept's visit order).
+  void gather_nearby(const Particle<Map>& p, const Pose2& pose, Scratch& s) const {
+    s.nearby.clear();
+    p.map.visit_near(query_box(pose), [&](const Landmark& lm) { s.nearby.push_back(lm); });
+  }
+
+  // The landmark with this id as the map holds it now: from s.nearby when it is there (a binary search
+  // instead of a second descent of the map), else from the map (known association can pair a landmark
+  // outside the query box). Valid until the map is written at the end of the particle's update.
+  static const Landmark* find_landmark(const Particle<Map>& p, const Scratch& s, LandmarkId id) {
+    const auto it = std::lower_bound(s.nearby.begin(), s.nearby.end(), id,
+                                     [](const Landmark& lm, LandmarkId v) { return lm.id < v; });
+    return it != s.nearby.end() && it->id == id ? &*it : p.map.find(id);
+  }
+
   // One decision per measurement (landmark id, kNewLandmark or kSpurious), and the lineage's score.
   void decide(ParticleState& p, const ScenarioStep& step, Scratch& s) {
     const auto& measurements = step.measurements;
@@ -414,7 +431,7 @@ class FastSlam {
       for (std::size_t k = 0; k < measurements.size(); ++k) {
         if (measurements[k].truth_id < 0) continue;  // clutter is recognised as such
         const LandmarkId id = known_ids_.at(measurements[k].truth_id);
-        s.decision[k] = p.map.find(id) ? id : kNewLandmark;
+        s.decision[k] = find_landmark(p, s, id) ? id : kNewLandmark;
       }
       return;
     } else {
@@ -439,7 +456,7 @@ class FastSlam {
         candidate_of_same_truth |= s.nearby[s.candidate_of[c]].truth_label == truth;
       const LandmarkId d = s.decision[k];
       if (d >= 0) {
-        const Landmark* lm = p.map.find(d);
+        const Landmark* lm = find_landmark(p, s, d);
         if (truth >= 0 && lm && lm->truth_label == truth) ++p.counts.true_matches;
         else ++p.counts.false_matches;
       } else {
@@ -450,11 +467,8 @@ class FastSlam {
   }
 
   // Landmarks predicted well inside the view but not observed lose evidence and may be pruned.
+  // s.nearby must hold the landmarks gathered this step.
   void apply_negative_evidence(ParticleState& p, Scratch& s, const std::vector<Touched>& touched) {
-    if (s.nearby.empty()) {
-      // Only the no-measurement path arrives here without candidates gathered.
-      p.map.visit_near(query_box(p.pose), [&](const Landmark& lm) { s.nearby.push_back(lm); });
-    }
     for (const Landmark& lm : s.nearby) {
       bool seen = false;
       for (const auto& t : touched) seen |= t.landmark.id == lm.id;
