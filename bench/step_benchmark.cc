@@ -85,12 +85,7 @@ void BM_FastSlam_Step(benchmark::State& state) {
   state.counters["measurements_per_step"] = static_cast<double>(measurements) / seconds.size();
   state.counters["resample_fraction"] = static_cast<double>(resamples) / seconds.size();
   state.counters["landmarks_best"] = static_cast<double>(engine.last_step_stats().best_landmarks);
-  MapMemoryStats total;
-  for (int i = 0; i < particles; ++i) {
-    const MapMemoryStats s = engine.particle(i).map.memory_stats();
-    total.bytes += s.bytes;
-    total.shared_bytes += s.shared_bytes;
-  }
+  const MapMemoryStats total = engine.memory_stats();
   state.counters["owned_bytes_per_particle"] = static_cast<double>(total.bytes - total.shared_bytes) / particles;
   // Distinct bytes held by all particles together, per particle: the pool's count where the back end has one
   // (the prior map was dropped above, so the particles hold all of it), else the sum (nothing is shared).

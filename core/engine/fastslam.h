@@ -161,13 +161,7 @@ class FastSlam {
 
   MapMemoryStats memory_stats() const {
     MapMemoryStats total;
-    for (const auto& p : particles_) {
-      const MapMemoryStats m = p.map.memory_stats();
-      total.nodes += m.nodes;
-      total.bytes += m.bytes;
-      total.shared_nodes += m.shared_nodes;
-      total.shared_bytes += m.shared_bytes;
-    }
+    for (const auto& p : particles_) total += p.map.memory_stats();
     return total;
   }
 

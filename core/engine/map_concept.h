@@ -36,6 +36,23 @@ struct MapMemoryStats {
   std::size_t bytes = 0;         // bytes of those nodes (payload and bookkeeping)
   std::size_t shared_nodes = 0;  // of those, nodes also referenced by another map (refcount > 1)
   std::size_t shared_bytes = 0;
+
+  // Counts `nodes` nodes of `bytes` bytes in all, as shared or not.
+  void add(std::size_t node_count, std::size_t byte_count, bool shared) {
+    nodes += node_count;
+    bytes += byte_count;
+    if (shared) {
+      shared_nodes += node_count;
+      shared_bytes += byte_count;
+    }
+  }
+  MapMemoryStats& operator+=(const MapMemoryStats& o) {
+    nodes += o.nodes;
+    bytes += o.bytes;
+    shared_nodes += o.shared_nodes;
+    shared_bytes += o.shared_bytes;
+    return *this;
+  }
 };
 
 template <class M>

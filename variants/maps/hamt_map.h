@@ -170,26 +170,26 @@ class HamtMap {
   MapMemoryStats memory_stats() const {
     MapMemoryStats s;
     if (!root_) return s;
-    std::array<std::pair<Ref, bool>, kStackSize> stack;
+    // Only unshared nodes are pushed: a shared subtree is summed where it is met, not walked into.
+    std::array<Ref, kStackSize> stack;
     int top = 0;
-    stack[top++] = {root_, false};
+    stack[top++] = root_;
     while (top > 0) {
-      auto [r, above_shared] = stack[--top];
+      const Ref r = stack[--top];
       if (r.is_leaf()) {
-        const bool shared = above_shared || r.as_leaf()->rc.load(std::memory_order_relaxed) > 1;
-        add(s, 1, sizeof(internal::LeafNode), shared);
+        s.add(1, sizeof(internal::LeafNode), r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
         continue;
       }
       const Node* n = r.as_inner<Node>();
-      if (above_shared || n->rc.load(std::memory_order_relaxed) > 1) {
+      if (n->rc.load(std::memory_order_relaxed) > 1) {
         // Every node of the subtree but its root fills one child slot.
         const std::size_t slots = std::size_t{n->leaves} + n->inners - 1;
-        add(s, std::size_t{n->leaves} + n->inners,
-            n->leaves * sizeof(internal::LeafNode) + n->inners * sizeof(Node) + slots * sizeof(Ref), true);
+        s.add(std::size_t{n->leaves} + n->inners,
+              n->leaves * sizeof(internal::LeafNode) + n->inners * sizeof(Node) + slots * sizeof(Ref), true);
         continue;
       }
-      add(s, 1, bytes(n->count), false);
-      for (int i = 0; i < n->count; ++i) stack[top++] = {n->child[i], false};
+      s.add(1, bytes(n->count), false);
+      for (int i = 0; i < n->count; ++i) stack[top++] = n->child[i];
     }
     return s;
   }
@@ -223,14 +223,6 @@ class HamtMap {
   static std::size_t bytes(int count) { return sizeof(Node) + count * sizeof(Ref); }
   static std::uint32_t leaves(Ref r) { return !r ? 0 : r.is_leaf() ? 1 : r.as_inner<Node>()->leaves; }
   static std::uint32_t inners(Ref r) { return !r || r.is_leaf() ? 0 : r.as_inner<Node>()->inners; }
-  static void add(MapMemoryStats& s, std::size_t nodes, std::size_t b, bool shared) {
-    s.nodes += nodes;
-    s.bytes += b;
-    if (shared) {
-      s.shared_nodes += nodes;
-      s.shared_bytes += b;
-    }
-  }
 
   static Node* new_node(int count) {
     Node* n = new (Pool::allocate(bytes(count))) Node;

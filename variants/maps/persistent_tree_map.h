@@ -111,25 +111,25 @@ class PersistentTreeMap {
   MapMemoryStats memory_stats() const {
     MapMemoryStats s;
     if (!root_) return s;
-    std::array<std::pair<Ref, bool>, kStackSize> stack;
+    // Only unshared nodes are pushed: a shared subtree is summed where it is met, not walked into.
+    std::array<Ref, kStackSize> stack;
     int top = 0;
-    stack[top++] = {root_, false};
+    stack[top++] = root_;
     while (top > 0) {
-      auto [r, above_shared] = stack[--top];
+      const Ref r = stack[--top];
       if (r.is_leaf()) {
-        const bool shared = above_shared || r.as_leaf()->rc.load(std::memory_order_relaxed) > 1;
-        add(s, 1, sizeof(internal::LeafNode), shared);
+        s.add(1, sizeof(internal::LeafNode), r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
         continue;
       }
       const Inner* n = r.as_inner<Inner>();
-      if (above_shared || n->rc.load(std::memory_order_relaxed) > 1) {
-        add(s, 2 * std::size_t{n->leaves} - 1,
-            n->leaves * sizeof(internal::LeafNode) + (n->leaves - 1) * sizeof(Inner), true);
+      if (n->rc.load(std::memory_order_relaxed) > 1) {
+        s.add(2 * std::size_t{n->leaves} - 1,
+              n->leaves * sizeof(internal::LeafNode) + (n->leaves - 1) * sizeof(Inner), true);
         continue;
       }
-      add(s, 1, sizeof(Inner), false);
-      stack[top++] = {n->child[0], false};
-      stack[top++] = {n->child[1], false};
+      s.add(1, sizeof(Inner), false);
+      stack[top++] = n->child[0];
+      stack[top++] = n->child[1];
     }
     return s;
   }
@@ -154,14 +154,6 @@ class PersistentTreeMap {
   // AVL height <= 1.44 log2(N + 2) < 46 for N < 2^31; a depth-first walk holds at most 2 per level.
   static constexpr int kStackSize = 128;
 
-  static void add(MapMemoryStats& s, std::size_t nodes, std::size_t bytes, bool shared) {
-    s.nodes += nodes;
-    s.bytes += bytes;
-    if (shared) {
-      s.shared_nodes += nodes;
-      s.shared_bytes += bytes;
-    }
-  }
   static std::uint32_t leaves(Ref r) { return !r ? 0 : r.is_leaf() ? 1 : r.as_inner<Inner>()->leaves; }
   static int height(Ref r) { return !r || r.is_leaf() ? 0 : r.as_inner<Inner>()->height; }
   static internal::FBox box_of(Ref r) {
