@@ -207,7 +207,6 @@ void Jcbb::solve(const AssociationProblem& problem, Scratch& s, AssociationResul
   s.list.clear();
   s.list_d2.clear();
   s.list_begin.assign(m + 1, 0);
-  s.remaining.assign(m + 1, 0);
   for (int k = 0; k < m; ++k) {
     s.list_begin[k] = static_cast<int>(s.list.size());
     const int i = s.order[k];
@@ -223,8 +222,6 @@ void Jcbb::solve(const AssociationProblem& problem, Scratch& s, AssociationResul
     }
   }
   s.list_begin[m] = static_cast<int>(s.list.size());
-  for (int k = m - 1; k >= 0; --k)
-    s.remaining[k] = s.remaining[k + 1] + (s.list_begin[k + 1] > s.list_begin[k] ? 1 : 0);
 
   JcbbSearch search(problem, s, joint_gate_, max_hypotheses_, &result.stats);
   search.run();

@@ -19,7 +19,6 @@ struct JcbbScratch {
   std::vector<int> list_begin;    // individually compatible candidates of level k: list[list_begin[k] ..)
   std::vector<int> list;          //   candidate indices sorted by (individual distance, id)
   std::vector<double> list_d2;
-  std::vector<int> remaining;     // remaining[k]: levels >= k that have any compatible candidate (the bound)
   std::vector<char> used;         // candidate taken by the current hypothesis
   std::vector<int> current;       // candidate index per level, -1 = unpaired (the '*' branch)
   std::vector<int> best;
@@ -38,8 +37,9 @@ struct JcbbScratch {
 //     pairing (O(k^2) forward substitution per node, never a refactorisation), and the joint distance grows by
 //     the squared norm of the new whitened innovation block:  D2_{k+1} = D2_k + |L22^-1 (nu - W^T y)|^2.
 //     D2 never decreases along a branch, which makes the tie-breaking bound exact.
-//   * Bound (Neira & Tardós, Fig. 2): pairings so far + levels left with any compatible candidate; a branch
-//     that cannot beat the best (more pairings, or as many with a lower D2) is pruned.
+//   * Bound (Neira & Tardós, Fig. 2, tightened): pairings so far + levels left that still have an unused
+//     compatible candidate; a branch that cannot beat the best (more pairings, or as many with a lower D2)
+//     is pruned.
 //   * Budget: after options.max_hypotheses nodes the best hypothesis found so far is returned and
 //     stats.budget_exhausted is set. Every returned hypothesis passed its joint test.
 class Jcbb {

@@ -11,8 +11,11 @@
 
 namespace arbor::association {
 
-JointTest joint_compatibility(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing,
-                              double probability) {
+namespace {
+
+// d2 and dof of the pairing, or well_formed = compatible = false; compatible is left true otherwise (the
+// caller gates d2).
+JointTest joint_distance(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing) {
   JointTest test;
   std::unordered_map<LandmarkId, int> index;
   for (int j = 0; j < static_cast<int>(problem.candidates.size()); ++j) index[problem.candidates[j].id] = j;
@@ -43,7 +46,22 @@ JointTest joint_compatibility(const AssociationProblem& problem, const std::vect
     return test;
   }
   test.d2 = nu.dot(llt.solve(nu));
-  test.compatible = test.d2 <= chi_square_quantile(probability, test.dof);
+  return test;
+}
+
+}  // namespace
+
+JointTest joint_compatibility(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing,
+                              double probability) {
+  JointTest test = joint_distance(problem, pairing);
+  if (test.well_formed && test.dof > 0) test.compatible = test.d2 <= chi_square_quantile(probability, test.dof);
+  return test;
+}
+
+JointTest joint_compatibility(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing,
+                              const ChiSquareTable& gate) {
+  JointTest test = joint_distance(problem, pairing);
+  if (test.well_formed && test.dof > 0) test.compatible = test.d2 <= gate(test.dof);
   return test;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/association/association_problem.h"
+#include "core/math/chi_square.h"
 
 namespace arbor::association {
 
@@ -20,6 +21,9 @@ struct JointTest {
 // C = blocks innovation_covariance(j_a, j_b) over the paired candidates (pose coupling included).
 JointTest joint_compatibility(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing,
                               double probability);
+// The same with the gate chi2(p, dof) read from a cached table (for callers in a search loop).
+JointTest joint_compatibility(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing,
+                              const ChiSquareTable& gate);
 
 }  // namespace arbor::association
 

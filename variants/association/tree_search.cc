@@ -244,7 +244,7 @@ class TreeSearch {
     for (int k = 0; k < m_; ++k)
       if (h[k] >= 0) ids[s_.order[k]] = p_.candidates[h[k]].id;
     ++stats_->tests;
-    return joint_compatibility(p_, ids, set_.gate_probability).compatible;
+    return joint_compatibility(p_, ids, set_.joint_gate).compatible;
   }
 
   // A complete interpretation is verified at once (closed-form pose, joint test), and only verified ones are
@@ -293,7 +293,7 @@ class TreeSearch {
       d2 += r.dot(inverse * r);
     }
     ++stats_->tests;
-    return d2 <= chi_square_quantile(set_.gate_probability, 2 * pairs - 3);
+    return d2 <= set_.joint_gate(2 * pairs - 3);
   }
 
   // With a verified pose, the measurements the (possibly locality-capped) search left open are gated against

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/association/association_problem.h"
+#include "core/math/chi_square.h"
 #include "core/math/pose2.h"
 #include "variants/association/association_common.h"
 
@@ -38,7 +39,7 @@ struct TreeSettings {
   // Per-particle use: the answer must also be jointly compatible with the problem's own predictions (the
   // particle's pose and P). Ignored when solve_tree is asked for the pose (relocalisation: prior not trusted).
   bool check_prior = true;
-  double gate_probability = 0.99;
+  ChiSquareTable joint_gate;       // chi2(gate_probability, dof), cached (make_tree_settings fills it)
   double new_landmark_gate = 0.0;  // chi2(new_landmark_probability, 2)
   double gate2 = 0.0;              // chi2(gate_probability, 2)
   double binary_gate = 0.0;        // chi2(gate_probability, 1) for distances and signatures

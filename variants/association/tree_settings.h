@@ -8,11 +8,14 @@
 
 namespace arbor::association {
 
+// Joint tests beyond this many degrees of freedom (more than 64 pairings) compute the quantile directly.
+inline constexpr int kJointGateMaxDof = 128;
+
 inline TreeSettings make_tree_settings(const AssociationOptions& options, bool use_locality) {
   TreeSettings s;
   s.use_locality = use_locality;
   s.anchor_only = true;
-  s.gate_probability = options.gate_probability;
+  s.joint_gate = ChiSquareTable(options.gate_probability, kJointGateMaxDof);
   s.gate2 = chi_square_quantile(options.gate_probability, 2);
   s.binary_gate = chi_square_quantile(options.gate_probability, 1);
   s.new_landmark_gate = chi_square_quantile(options.new_landmark_probability, 2);
