@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "core/io/text_reader.h"
+#include "core/metrics/trajectory_metrics.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/loaders/loader_util.h"
 #include "experiments/loaders/step_merger.h"
@@ -119,26 +120,6 @@ double heading_from_track(double track_direction, double steering, const Ackerma
   return wrap_angle(track_direction - std::atan2(car.laser_forward_m * t, 1.0 - car.laser_left_m * t));
 }
 
-// Closed-form least-squares rigid transform taking points p (laser frame) onto q (world): the laser pose.
-Pose2 fit_pose(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
-  Vec2 pc = Vec2::Zero(), qc = Vec2::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    pc += p[i];
-    qc += q[i];
-  }
-  pc /= static_cast<double>(p.size());
-  qc /= static_cast<double>(q.size());
-  double sxx = 0, sxy = 0;  // sum of dot and cross products of the centred pairs
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec2 a = p[i] - pc, b = q[i] - qc;
-    sxx += a.dot(b);
-    sxy += a.x() * b.y() - a.y() * b.x();
-  }
-  const double theta = std::atan2(sxy, sxx);
-  const double c = std::cos(theta), s = std::sin(theta);
-  return {qc.x() - (c * pc.x() - s * pc.y()), qc.y() - (s * pc.x() + c * pc.y()), theta};
-}
-
 struct FittedScan {
   std::size_t step;
   Pose2 pose;
@@ -179,7 +160,7 @@ std::vector<FittedScan> fit_scans(const Scenario& s, const Vec2& lever, double g
         q.push_back(best->position);
       }
       if (p.size() < 3) break;
-      guess = fit_pose(p, q);
+      guess = align_se2(p, q);  // the laser pose taking scan points p onto world points q
       if (pass == 1) fitted.push_back({i, guess, guess.between({g->x(), g->y(), 0.0}).position(), ids});
     }
   }

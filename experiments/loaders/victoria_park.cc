@@ -80,7 +80,7 @@ std::vector<TimedScan> read_trees(const std::string& path, LoadReport* report) {
 
 Scenario load_victoria_park(const std::string& dir, LoadReport* report, const VictoriaParkTuning& tuning) {
   const std::vector<ControlSample> controls = read_dead_reckoning(join_path(dir, VictoriaParkFiles::kDeadReckoning));
-  const std::vector<TimedScan> scans = read_trees(join_path(dir, VictoriaParkFiles::kTrees), report);
+  std::vector<TimedScan> scans = read_trees(join_path(dir, VictoriaParkFiles::kTrees), report);
   Scenario s;
   s.truth_track = read_gps(join_path(dir, VictoriaParkFiles::kGps));
 
@@ -109,8 +109,7 @@ Scenario load_victoria_park(const std::string& dir, LoadReport* report, const Vi
   // Detections beyond the sensor model's range are dropped (the scan itself is kept): the filter considers
   // only landmarks within range as association candidates, so a far tree would start a new landmark at every
   // sighting.
-  std::vector<TimedScan> in_range = scans;
-  for (auto& scan : in_range) {
+  for (auto& scan : scans) {
     const auto far = std::remove_if(scan.measurements.begin(), scan.measurements.end(),
                                     [&](const Measurement& m) { return m.range_m > tuning.max_range_m; });
     report->add("dropped: detection beyond max range", static_cast<std::int64_t>(scan.measurements.end() - far));
@@ -122,7 +121,7 @@ Scenario load_victoria_park(const std::string& dir, LoadReport* report, const Vi
   merge.origin_ms = static_cast<double>(kVictoriaParkOriginMs);
   merge.before_first = {merge.start_ms, 0.0, controls.front().u2};  // standing still until the first reading
   s.start_time_s = (merge.start_ms - kVictoriaParkOriginMs) / 1000.0;
-  s.steps = merge_controls_and_scans(controls, in_range, merge);
+  s.steps = merge_controls_and_scans(controls, scans, merge);
 
   report->add("dead-reckoning samples", static_cast<std::int64_t>(controls.size()));
   report->add("scans", static_cast<std::int64_t>(scans.size()));
