@@ -316,6 +316,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   {
     std::deque<Job> sims;
     std::set<std::string> queued;
+    int finished = 0;  // simulations done, for the progress line
     fs::create_directories(out + "/scenarios");
     for (const auto& run : pending) {
       const std::string name = run.scenario_name();
@@ -325,17 +326,13 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
       if (fs::exists(file)) continue;
       const std::string log = out + "/logs/simulate-" + name + ".log";
       sims.push_back({name, simulate_command(run, exe, file), log, [&, name, file, log](const ChildExit& e, double) {
+                        ++finished;
                         if (!e.ok() || !fs::exists(file))
                           scenario_error[name] = fmt::format("arbor simulate failed ({}): {}", e.describe(), last_log_line(log));
                       }});
     }
     if (!sims.empty()) {
       const int total = static_cast<int>(sims.size());
-      int finished = 0;
-      for (auto& job : sims) {
-        auto inner = job.on_exit;
-        job.on_exit = [&finished, inner](const ChildExit& e, double w) { ++finished; inner(e, w); };
-      }
       ProgressLine line;
       const bool completed = run_jobs(std::move(sims), jobs, spec.timeout_s, 1.0, [&](int) {
         line.show(fmt::format("[sweep] simulating scenarios {}/{}", finished, total), finished == total);
@@ -350,7 +347,6 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
 
   // Phase 2: the runs.
   std::deque<Job> runs;
-  int finished_ok = 0;
   for (const auto& run : pending) {
     const std::string key = run.key();
     const std::string log = out + "/logs/" + key + ".log";
@@ -379,8 +375,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
                       }
                       append_result_row(out, make_row(run, columns, spec.metrics, status, error, result ? &*result : nullptr, &e, wall), columns);
                       ++summary.finished;
-                      if (status == "ok") ++finished_ok;
-                      else ++summary.failed;
+                      if (status != "ok") ++summary.failed;
                     }});
     fs::remove_all(run_dir);  // output of an interrupted earlier attempt
   }
