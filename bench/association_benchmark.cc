@@ -12,6 +12,7 @@
 #include <fmt/core.h>
 
 #include "core/io/build_info.h"
+#include "core/metrics/run_statistics.h"
 #include "variants/association/joint_compatibility.h"
 #include "variants/association/problem_generator.h"
 #include "variants/association/strategy_dispatch.h"
@@ -25,15 +26,6 @@ struct Case {
   int n, m, clutter, seeds;
   std::int64_t budget = 1'000'000;
 };
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = q * (v.size() - 1);
-  const std::size_t lo = static_cast<std::size_t>(pos);
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (pos - lo) * (v[hi] - v[lo]);
-}
 
 void run_case(const Case& c) {
   std::vector<double> seconds, hypotheses, tests;

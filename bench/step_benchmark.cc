@@ -14,6 +14,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/live_bytes.h"
 #include "bench/map_world.h"
 #include "core/engine/fastslam.h"
 #include "variants/registry.h"
@@ -32,12 +33,6 @@ double process_cpu_s() {
   timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-template <class M>
-std::int64_t live_bytes() {
-  if constexpr (requires { M::live_bytes(); }) return M::live_bytes();
-  else return -1;
 }
 
 template <class Map>
