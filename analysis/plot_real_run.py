@@ -6,7 +6,6 @@ scenario file the run used (truth poses, surveyed landmarks, GPS track; see docs
 Usage: analysis/plot_real_run.py RUN_DIR --scenario FILE --out FIG.png [--title TEXT]
 """
 import argparse
-import csv
 import json
 
 import matplotlib
@@ -15,32 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-
-def read_scenario_truth(path):
-    truth, landmarks, gps, initial = [], [], [], None
-    time = None
-    with open(path) as f:
-        for line in f:
-            fields = line.split()
-            if not fields:
-                continue
-            kind = fields[0]
-            if kind == "step":
-                time = float(fields[1])
-            elif kind == "truth":
-                truth.append((time, float(fields[1]), float(fields[2])))
-            elif kind == "landmark":
-                landmarks.append((float(fields[2]), float(fields[3])))
-            elif kind == "gps":
-                gps.append((float(fields[1]), float(fields[2]), float(fields[3])))
-            elif kind == "initial":
-                initial = (float(fields[2]), float(fields[3]))
-    return np.array(truth).reshape(-1, 3), np.array(landmarks).reshape(-1, 2), np.array(gps).reshape(-1, 3), initial
-
-
-def read_tum(path):
-    rows = [list(map(float, l.split()[:3])) for l in open(path) if l.strip() and not l.startswith("#")]
-    return np.array(rows).reshape(-1, 3)
+import arbor_results as ar  # noqa: E402
 
 
 def align_se2(a, b):
@@ -60,10 +34,12 @@ def main():
     ap.add_argument("--title", default="")
     args = ap.parse_args()
 
-    truth, landmarks, gps, _ = read_scenario_truth(args.scenario)
-    est = read_tum(f"{args.run_dir}/trajectory.tum")
-    with open(f"{args.run_dir}/map.csv") as f:
-        est_map = np.array([[float(r["x"]), float(r["y"])] for r in csv.DictReader(f)]).reshape(-1, 2)
+    poses, surveyed, track = ar.read_scenario_truth(args.scenario)
+    truth = poses[["t", "x", "y"]].to_numpy(dtype=float)
+    landmarks = surveyed[["x", "y"]].to_numpy(dtype=float)
+    gps = track[["t", "x", "y"]].to_numpy(dtype=float)
+    est = ar.read_tum(f"{args.run_dir}/trajectory.tum")[["t", "x", "y"]].to_numpy(dtype=float)
+    est_map = ar.read_map_csv(f"{args.run_dir}/map.csv")[["x", "y"]].to_numpy(dtype=float)
     result = json.load(open(f"{args.run_dir}/result.json"))
 
     fig, ax = plt.subplots(figsize=(7, 6))
