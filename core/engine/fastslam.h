@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -36,7 +37,8 @@ namespace arbor {
 
 template <LandmarkMap Map>
 struct Particle {
-  Pose2 pose;
+  Pose2 pose;                   // the last draw, or between draws the predicted mean since it
+  Mat3 pose_covariance = Mat3::Zero();  // of the prediction since the last draw (zero right after one)
   double log_weight = 0.0;
   Map map;
   PoseHistory history;
@@ -44,6 +46,7 @@ struct Particle {
   LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end); with
                                 // known association ids come from the engine-wide truth table instead
   AssociationCounts counts;     // this lineage's decisions scored against ground truth (metrics only)
+  std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
 };
 
 // What one step did, summed over particles where it is a count.
@@ -55,7 +58,8 @@ struct StepStats {
   std::size_t best_landmarks = 0;
 };
 
-// Weighted mean and covariance of the particle poses (heading by circular mean, differences wrapped).
+// Weighted mean and covariance of the particle poses (heading by circular mean, differences wrapped); between
+// draws each particle is a Gaussian, whose covariance the mixture's adds.
 struct PoseEstimate {
   Pose2 mean;
   Mat3 covariance = Mat3::Zero();
@@ -74,6 +78,11 @@ class FastSlam {
     log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
                                std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
     prune_ = !Assoc::kUsesGroundTruth || options.prune_with_known_association;
+    known_gate_ = options.known_gate_probability < 1.0 ? chi_square_quantile(options.known_gate_probability, 2)
+                                                       : std::numeric_limits<double>::infinity();
+    const double nu = options.student_dof;
+    student_log_norm_ = std::lgamma(0.5 * (nu + 2.0)) - std::lgamma(0.5 * nu) - std::log(nu * kPi);
+    last_time_s_ = scenario.start_time_s;
     particles_.resize(options.particles);
     for (int i = 0; i < options.particles; ++i) {
       RandomStream rng(options.seed, ~std::uint64_t{0}, i, RandomPurpose::kMotion);
@@ -91,6 +100,8 @@ class FastSlam {
   // associate, update and weight every particle.
   void step(const ScenarioStep& step) {
     stats_ = StepStats{};
+    step_dt_ = step.time_s - last_time_s_;
+    last_time_s_ = step.time_s;
     if (step_index_ > 0 && last_n_eff_ < options_.resample_threshold * options_.particles) resample();
     if (Assoc::kUsesGroundTruth) assign_known_ids(step);
     arena_.execute([&] {
@@ -154,7 +165,7 @@ class FastSlam {
     e.mean = {x, y, std::atan2(s, c)};
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       const Vec3 d = pose_error(particles_[i].pose, e.mean);
-      e.covariance += weights_[i] * d * d.transpose();
+      e.covariance += weights_[i] * (d * d.transpose() + particles_[i].pose_covariance);
     }
     return e;
   }
@@ -225,10 +236,6 @@ class FastSlam {
            std::abs(z.y()) <= 0.5 * sensor_.fov_rad - options_.evidence_bearing_margin_rad;
   }
 
-  static double log_gaussian(const Vec2& innovation, const Mat2& S) {
-    return -0.5 * innovation.dot(S.ldlt().solve(innovation)) - std::log(2.0 * kPi) - 0.5 * std::log(S.determinant());
-  }
-
   // Draws from N(mean, cov) with a symmetric square root, robust to a semi-definite covariance.
   static Vec3 sample_gaussian(const Vec3& mean, const Mat3& cov, RandomStream& rng) {
     Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (cov + cov.transpose()));
@@ -237,45 +244,67 @@ class FastSlam {
     return mean + eig.eigenvectors() * scaled;
   }
 
-  // Samples x_t ~ p(x_t | x_{t-1}, u_t) by perturbing the control (the models' Q_u are diagonal).
-  Pose2 sample_motion(const Pose2& pose, const Vec3& u, RandomStream& rng) const {
-    const Mat3 Q_u = motion_.control_covariance(u);
-    Vec3 noisy = u;
-    for (int k = 0; k < 3; ++k) noisy[k] += std::sqrt(Q_u(k, k)) * rng.normal();
-    return motion_.apply(pose, noisy);
-  }
-
+  // One particle's step, along Montemerlo et al. 2003 (FastSLAM 2.0, §3-4): predict through the control;
+  // at a scan associate, propose and draw the pose, update and create landmarks, weight, and keep the
+  // existence evidence. Between scans (per-scan sampling) only the prediction runs.
   void update_particle(ParticleState& p, const ScenarioStep& step, int index, Scratch& s) {
     p.step_hypotheses = p.step_tests = 0;
-    RandomStream rng(options_.seed, step_index_, index, RandomPurpose::kMotion);
     const bool fastslam2 = options_.version == FilterVersion::kFastSlam2;
-    const bool record = step.has_scan || step.truth_pose.has_value();
+    const bool per_control = options_.motion_sampling == MotionSampling::kPerControl;
+    motion_.predict(&p.pose, &p.pose_covariance, step.control, step_dt_);
     if (!step.has_scan || step.measurements.empty()) {
-      p.pose = sample_motion(p.pose, step.control, rng);
+      if (step.has_scan || per_control) draw_pose(p, index, RandomPurpose::kMotion);
       if (step.has_scan) {
         gather_nearby(p, p.pose, s);
         apply_negative_evidence(p, s, /*touched=*/{});
       }
-      if (record) p.history.push({step.time_s, p.pose});
+      record_pose(p, step);
       return;
     }
-
-    // FastSLAM 1.0 associates at the sampled pose (P = 0); 2.0 at the motion prediction with its covariance,
-    // because the proposal is drawn only after association (DESIGN.md §4).
-    Mat3 P_pred = Mat3::Zero();
-    Pose2 association_pose;
-    if (fastslam2) {
-      association_pose = motion_.apply(p.pose, step.control);
-      P_pred = motion_.prediction_covariance(p.pose, step.control);
-    } else {
-      p.pose = sample_motion(p.pose, step.control, rng);
-      association_pose = p.pose;
-    }
-    gather_candidates(p, association_pose, P_pred, step, s);
+    // FastSLAM 1.0 draws first and associates at the sample (P = 0); 2.0 associates at the prediction with
+    // its covariance, because its proposal is drawn only after association (DESIGN.md §4).
+    if (!fastslam2) draw_pose(p, index, RandomPurpose::kMotion);
+    gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
+    collect_touched(p, step.measurements, s);
+    double log_weight = fastslam2 ? propose_and_draw(p, step.measurements, index, s) : 0.0;
+    log_weight += update_landmarks(p, step.measurements, s, /*weight=*/!fastslam2);
+    log_weight += add_new_landmarks(p, step.measurements, s);
+    write_touched(p, s);
+    apply_negative_evidence(p, s, s.touched);
+    p.log_weight += log_weight;
+    record_pose(p, step);
+    record_decisions(p, step.measurements.size(), s);
+  }
 
-    // Collect the landmarks the decisions touch (copies; the map is written once at the end).
-    const auto& measurements = step.measurements;
+  // Replaces the prediction N(pose, P) by one draw from it.
+  void draw_pose(ParticleState& p, int index, RandomPurpose purpose) const {
+    RandomStream rng(options_.seed, step_index_, index, purpose);
+    p.pose = Pose2::from_vector(sample_gaussian(p.pose.vector(), p.pose_covariance, rng));
+    p.pose_covariance.setZero();
+  }
+
+  void record_pose(ParticleState& p, const ScenarioStep& step) const {
+    if (step.has_scan || step.truth_pose.has_value()) p.history.push({step.time_s, p.pose});
+  }
+
+  // The measurement's log-likelihood under innovation covariance S, and the factor by which the update should
+  // scale its noise: 1 for the Gaussian, (nu + d^2) / (nu + 2) for the Student-t.
+  double log_likelihood(const Vec2& innovation, const Mat2& S, double* noise_scale) const {
+    const double d2 = innovation.dot(S.ldlt().solve(innovation));
+    const double log_det = std::log(S.determinant());
+    if (options_.likelihood == Likelihood::kGaussian) {
+      *noise_scale = 1.0;
+      return -0.5 * d2 - std::log(2.0 * kPi) - 0.5 * log_det;
+    }
+    const double nu = options_.student_dof;
+    *noise_scale = (nu + d2) / (nu + 2.0);
+    return student_log_norm_ - 0.5 * log_det - 0.5 * (nu + 2.0) * std::log1p(d2 / nu);
+  }
+
+  // s.touched: a working copy of every landmark the decisions pair (the map is written once, at the end);
+  // s.touched_of: per measurement, its index there or -1.
+  void collect_touched(const ParticleState& p, const std::vector<Measurement>& measurements, Scratch& s) const {
     s.touched.clear();
     s.touched_of.assign(measurements.size(), -1);
     for (std::size_t k = 0; k < measurements.size(); ++k) {
@@ -290,56 +319,74 @@ class FastSlam {
       }
       s.touched_of[k] = t;
     }
+  }
 
+  // Montemerlo et al. 2003, §3: the proposal N(mu, Sigma) folds each paired measurement into the prediction
+  // (mean p.pose, covariance p.pose_covariance: every control since the last draw) by an EKF step on the
+  // pose; the pose is drawn from it. Returns the log importance weight, the product of the measurement
+  // marginals N(z; h(mu), H_x Sigma H_x^T + Q) taken in the same sequence.
+  double propose_and_draw(ParticleState& p, const std::vector<Measurement>& measurements, int index, Scratch& s) const {
     double log_weight = 0.0;
-    if (fastslam2) {
-      // Montemerlo et al. 2003, §3: the proposal N(mu, Sigma) folds each paired measurement into the motion
-      // prediction by an EKF step on the pose; the weight is the product of the measurement marginals
-      // N(z; h(mu), H_x Sigma H_x^T + Q) taken in the same sequence.
-      Vec3 mu = association_pose.vector();
-      Mat3 Sigma = P_pred;
-      for (std::size_t k = 0; k < measurements.size(); ++k) {
-        if (s.touched_of[k] < 0) continue;
-        const Landmark& lm = s.touched[s.touched_of[k]].landmark;
-        Mat2 H_m;
-        Mat23 H_x;
-        const Vec2 z_hat = range_bearing_predict(Pose2::from_vector(mu), lm.mean, &H_m, &H_x);
-        const Mat2 Q = H_m * lm.cov * H_m.transpose() + R_;
-        const Mat2 S = H_x * Sigma * H_x.transpose() + Q;
-        const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
-        log_weight += log_gaussian(nu, S);
-        const Mat32 K = Sigma * H_x.transpose() * S.inverse();
-        mu += K * nu;
-        mu.z() = wrap_angle(mu.z());
-        const Mat3 I_KH = Mat3::Identity() - K * H_x;
-        Sigma = I_KH * Sigma * I_KH.transpose() + K * Q * K.transpose();  // Joseph form keeps it SPD
-      }
-      RandomStream proposal_rng(options_.seed, step_index_, index, RandomPurpose::kProposal);
-      p.pose = Pose2::from_vector(sample_gaussian(mu, Sigma, proposal_rng));
+    Vec3 mu = p.pose.vector();
+    Mat3 Sigma = p.pose_covariance;
+    for (std::size_t k = 0; k < measurements.size(); ++k) {
+      if (s.touched_of[k] < 0) continue;
+      const Landmark& lm = s.touched[s.touched_of[k]].landmark;
+      Mat2 H_m;
+      Mat23 H_x;
+      const Vec2 z_hat = range_bearing_predict(Pose2::from_vector(mu), lm.mean, &H_m, &H_x);
+      const Mat2 landmark_part = H_m * lm.cov * H_m.transpose();
+      const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
+      double scale = 1.0;
+      log_weight += log_likelihood(nu, H_x * Sigma * H_x.transpose() + landmark_part + R_, &scale);
+      const Mat2 Q = landmark_part + scale * R_;
+      const Mat2 S = H_x * Sigma * H_x.transpose() + Q;
+      const Mat32 K = Sigma * H_x.transpose() * S.inverse();
+      mu += K * nu;
+      mu.z() = wrap_angle(mu.z());
+      const Mat3 I_KH = Mat3::Identity() - K * H_x;
+      Sigma = I_KH * Sigma * I_KH.transpose() + K * Q * K.transpose();  // Joseph form keeps it SPD
     }
+    p.pose = Pose2::from_vector(mu);
+    p.pose_covariance = Sigma;
+    draw_pose(p, index, RandomPurpose::kProposal);
+    return log_weight;
+  }
 
-    // Landmark EKF updates at the final pose (Montemerlo 2002, eq. 8-11; Joseph form).
+  // Landmark EKF updates at the drawn pose (Montemerlo 2002, eq. 8-11; Joseph form). With weight (FastSLAM
+  // 1.0) returns the log importance weight, the product of the measurement likelihoods.
+  double update_landmarks(const ParticleState& p, const std::vector<Measurement>& measurements, Scratch& s, bool weight) const {
+    double log_weight = 0.0;
     for (std::size_t k = 0; k < measurements.size(); ++k) {
       if (s.touched_of[k] < 0) continue;
       Landmark& lm = s.touched[s.touched_of[k]].landmark;
       Mat2 H_m;
       const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m);
-      const Mat2 Q = H_m * lm.cov * H_m.transpose() + R_;
       const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
-      if (!fastslam2) log_weight += log_gaussian(nu, Q);  // FastSLAM 1.0 importance weight
+      double scale = 1.0;
+      const double ll = log_likelihood(nu, H_m * lm.cov * H_m.transpose() + R_, &scale);
+      if (weight) log_weight += ll;
+      const Mat2 R = scale * R_;
+      const Mat2 Q = H_m * lm.cov * H_m.transpose() + R;
       const Mat2 K = lm.cov * H_m.transpose() * Q.inverse();
       lm.mean += K * nu;
       const Mat2 I_KH = Mat2::Identity() - K * H_m;
-      lm.cov = I_KH * lm.cov * I_KH.transpose() + K * R_ * K.transpose();
+      lm.cov = I_KH * lm.cov * I_KH.transpose() + K * R * K.transpose();
       lm.cov = 0.5 * (lm.cov + lm.cov.transpose());
       ARBOR_CHECK(lm.cov(0, 0) > 0.0 && lm.cov.determinant() > 0.0, "landmark {} covariance lost definiteness", lm.id);
       lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
       const float sig = measurements[k].signature;
       if (!std::isnan(sig)) lm.signature = std::isnan(lm.signature) ? sig : lm.signature + 0.2f * (sig - lm.signature);
     }
+    return log_weight;
+  }
 
-    // New landmarks from the measurements the association left unexplained (inverse measurement model).
+  // New landmarks from the measurements the association left unexplained (inverse measurement model); a
+  // new or spurious measurement is weighted by the likelihood at the new-landmark gate.
+  double add_new_landmarks(ParticleState& p, const std::vector<Measurement>& measurements, Scratch& s) const {
+    double log_weight = 0.0;
     for (std::size_t k = 0; k < measurements.size(); ++k) {
+      if (s.decision[k] == kSpurious) log_weight += log_likelihood_unpaired_;
       if (s.decision[k] != kNewLandmark) continue;
       log_weight += log_likelihood_unpaired_;
       Landmark lm;
@@ -352,23 +399,24 @@ class FastSlam {
       s.touched_of[k] = static_cast<int>(s.touched.size());
       s.touched.push_back({lm, true});
     }
-    for (std::size_t k = 0; k < measurements.size(); ++k)
-      if (s.decision[k] == kSpurious) log_weight += log_likelihood_unpaired_;
+    return log_weight;
+  }
 
-    // Locality (Ge & Lewis 2006, ch. 9): everything observed in this scan was seen together.
+  // Locality (Ge & Lewis 2006, ch. 9): everything observed in this scan was seen together. Then the map is
+  // written, once per touched landmark.
+  static void write_touched(ParticleState& p, Scratch& s) {
     for (auto& a : s.touched)
       for (const auto& b : s.touched)
         if (a.landmark.id != b.landmark.id) a.landmark.locality.add(b.landmark.id);
-
     for (const auto& t : s.touched) {
       if (t.is_new) p.map.insert(t.landmark);
       else p.map.set(t.landmark);
     }
-    apply_negative_evidence(p, s, s.touched);
-    p.log_weight += log_weight;
-    if (record) p.history.push({step.time_s, p.pose});
-    StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements.size(), kNoLandmark)};
-    for (std::size_t k = 0; k < measurements.size(); ++k)
+  }
+
+  void record_decisions(ParticleState& p, std::size_t measurements, const Scratch& s) const {
+    StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements, kNoLandmark)};
+    for (std::size_t k = 0; k < measurements; ++k)
       if (s.touched_of[k] >= 0) applied.landmarks[k] = s.touched[s.touched_of[k]].landmark.id;
     p.decisions.push(std::move(applied));
   }
@@ -425,7 +473,10 @@ class FastSlam {
       for (std::size_t k = 0; k < measurements.size(); ++k) {
         if (measurements[k].truth_id < 0) continue;  // clutter is recognised as such
         const LandmarkId id = known_ids_.at(measurements[k].truth_id);
-        s.decision[k] = find_landmark(p, s, id) ? id : kNewLandmark;
+        const Landmark* lm = find_landmark(p, s, id);
+        if (!lm) s.decision[k] = kNewLandmark;
+        else if (within_known_gate(p, measurements[k], *lm)) s.decision[k] = id;
+        else ++p.rejected;  // stays kSpurious: an outlier of the sensor, not evidence about the landmark
       }
       return;
     } else {
@@ -437,6 +488,17 @@ class FastSlam {
       p.step_tests = s.result.stats.tests;
       score_decisions(p, measurements, s);
     }
+  }
+
+  // Whether the measurement's innovation against the landmark its id names lies inside the known-association
+  // gate, with the landmark's and the pose's uncertainty (p.pose_covariance: zero after a FastSLAM 1.0 draw).
+  bool within_known_gate(const ParticleState& p, const Measurement& m, const Landmark& lm) const {
+    Mat2 H_m;
+    Mat23 H_x;
+    const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, &H_x);
+    const Mat2 S = H_x * p.pose_covariance * H_x.transpose() + H_m * lm.cov * H_m.transpose() + R_;
+    const Vec2 nu = range_bearing_innovation(m.z(), z_hat);
+    return nu.dot(S.ldlt().solve(nu)) <= known_gate_;
   }
 
   // Scores each decision against the scenario's ground truth, where it has any (metrics only).
@@ -481,6 +543,10 @@ class FastSlam {
   Mat2 R_;
   Assoc strategy_;
   double log_likelihood_unpaired_ = 0.0;
+  double known_gate_ = 0.0;          // chi-square(2) quantile of options_.known_gate_probability
+  double student_log_norm_ = 0.0;    // log Gamma((nu+2)/2) - log Gamma(nu/2) - log(nu pi), 2-D Student-t
+  double last_time_s_ = 0.0;
+  double step_dt_ = 0.0;             // duration of the step being processed
   bool prune_ = true;
   tbb::task_arena arena_;
   std::vector<ParticleState> particles_;

@@ -16,6 +16,28 @@ bool from_string(std::string_view name, FilterVersion* version) {
   return true;
 }
 
+std::string_view to_string(MotionSampling sampling) {
+  return sampling == MotionSampling::kPerScan ? "per-scan" : "per-control";
+}
+
+bool from_string(std::string_view name, MotionSampling* sampling) {
+  if (name == "per-scan") *sampling = MotionSampling::kPerScan;
+  else if (name == "per-control") *sampling = MotionSampling::kPerControl;
+  else return false;
+  return true;
+}
+
+std::string_view to_string(Likelihood likelihood) {
+  return likelihood == Likelihood::kGaussian ? "gaussian" : "student-t";
+}
+
+bool from_string(std::string_view name, Likelihood* likelihood) {
+  if (name == "gaussian") *likelihood = Likelihood::kGaussian;
+  else if (name == "student-t") *likelihood = Likelihood::kStudentT;
+  else return false;
+  return true;
+}
+
 std::string FastSlamOptions::validate() const {
   if (particles < 1) return fmt::format("particles must be at least 1 (got {})", particles);
   if (threads < 0) return fmt::format("threads must be 0 (all) or positive (got {})", threads);
@@ -25,6 +47,9 @@ std::string FastSlamOptions::validate() const {
   if (!(p > 0.0 && p < 1.0)) return fmt::format("gate probability must lie in (0, 1) (got {})", p);
   if (!(q > 0.0 && q < 1.0)) return fmt::format("new-landmark probability must lie in (0, 1) (got {})", q);
   if (!(log_odds_hit > 0.0 && log_odds_miss >= 0.0)) return "log-odds hit must be positive and miss non-negative";
+  if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
+  if (!(known_gate_probability > 0.0 && known_gate_probability <= 1.0))
+    return fmt::format("known-association gate probability must lie in (0, 1] (got {})", known_gate_probability);
   return "";
 }
 

@@ -11,9 +11,19 @@
 namespace arbor {
 
 enum class FilterVersion { kFastSlam1, kFastSlam2 };
+// per-scan: between scans each particle carries its predicted mean and covariance through every control and
+// draws once per scan (Probabilistic Robotics Table 13.2); per-control: it draws at every control, and FastSLAM
+// 2.0's proposal sees only the last control's covariance (Arbor before the fix; kept as an ablation).
+enum class MotionSampling { kPerScan, kPerControl };
+// The measurement likelihood in the weights, the proposal and the landmark updates.
+enum class Likelihood { kGaussian, kStudentT };
 
 std::string_view to_string(FilterVersion version);
 bool from_string(std::string_view name, FilterVersion* version);
+std::string_view to_string(MotionSampling sampling);
+bool from_string(std::string_view name, MotionSampling* sampling);
+std::string_view to_string(Likelihood likelihood);
+bool from_string(std::string_view name, Likelihood* likelihood);
 
 struct FastSlamOptions {
   FilterVersion version = FilterVersion::kFastSlam2;
@@ -22,6 +32,17 @@ struct FastSlamOptions {
   int threads = 0;                  // 0: all hardware threads
   double resample_threshold = 0.5;  // resample when N_eff < threshold * particles
   AssociationOptions association;
+  MotionSampling motion_sampling = MotionSampling::kPerScan;
+
+  // Student-t with nu degrees of freedom (Lange, Little & Taylor 1989) has the Gaussian's centre and heavy
+  // tails: the weights do not collapse on one measurement 4 sigma out, and the proposal and landmark updates
+  // scale its noise by (nu + d^2) / (nu + 2) (the EM weight of the t), so it pulls less.
+  Likelihood likelihood = Likelihood::kGaussian;
+  double student_dof = 4.0;
+  // Known association trusts the ids, not the measurements: a paired measurement whose innovation lies
+  // outside this chi-square gate (2 dof, pose and landmark uncertainty included) is rejected and counted.
+  // 1 disables the gate.
+  double known_gate_probability = 0.999;
 
   // Landmark existence evidence in log-odds (Montemerlo 2003 §4 uses the same counting idea): seen +hit,
   // predicted in view and missed -miss, clamped at max; below prune the landmark is dropped. Provisional

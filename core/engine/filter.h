@@ -21,6 +21,8 @@ class Filter {
   virtual std::vector<TimedPose> best_trajectory() const = 0;
   virtual std::vector<Landmark> best_map() const = 0;
   virtual AssociationCounts best_association_counts() const = 0;
+  // Measurements the known-association gate rejected in the best particle's lineage.
+  virtual std::int64_t best_rejected_measurements() const = 0;
   // The best particle's association decisions, one entry per scan with measurements, oldest first.
   virtual std::vector<StepDecisions> best_decisions() const = 0;
   // Summed over all particles; shared nodes are counted once per particle that references them.
@@ -47,6 +49,9 @@ class FilterImpl final : public Filter {
   }
   AssociationCounts best_association_counts() const override {
     return engine_.particle(engine_.best_particle()).counts;
+  }
+  std::int64_t best_rejected_measurements() const override {
+    return engine_.particle(engine_.best_particle()).rejected;
   }
   std::vector<StepDecisions> best_decisions() const override {
     return engine_.particle(engine_.best_particle()).decisions.to_vector();

@@ -12,7 +12,9 @@ namespace arbor {
 namespace {
 
 constexpr std::string_view kHeader = "arbor-scenario";
-constexpr int kVersion = 1;
+// Version 2: motion noise as continuous-time densities (core/models/twist_motion.h). Version 1 held
+// per-reading sigmas, whose meaning depended on the reading rate; such a file is refused, not reinterpreted.
+constexpr int kVersion = 2;
 
 std::string signature_text(float s) { return std::isnan(s) ? "-" : fmt::format("{}", s); }
 std::string truth_text(std::int32_t id) {
@@ -27,29 +29,34 @@ double non_negative(const TextReader& in, std::size_t i, std::string_view name) 
   return v;
 }
 
+// The five densities of TwistNoise, fields 2-6 of an odometry or velocity motion line.
+TwistNoise read_twist_noise(const TextReader& in) {
+  TwistNoise n;
+  n.q_v = non_negative(in, 2, "q_v");
+  n.q_omega = non_negative(in, 3, "q_omega");
+  n.k_v = non_negative(in, 4, "k_v");
+  n.k_wv = non_negative(in, 5, "k_wv");
+  n.k_ww = non_negative(in, 6, "k_ww");
+  return n;
+}
+
 void read_motion(const TextReader& in, MotionModel* motion) {
   const std::string_view kind = in.field(1);
   if (!from_string(kind, &motion->kind))
     in.fail("model", fmt::format("unknown motion model '{}' (odometry, velocity, ackermann)", kind));
   switch (motion->kind) {
     case MotionModelKind::kOdometry:
-      in.expect_fields(6, 6, "motion odometry");
-      motion->odometry.alpha1 = non_negative(in, 2, "alpha1");
-      motion->odometry.alpha2 = non_negative(in, 3, "alpha2");
-      motion->odometry.alpha3 = non_negative(in, 4, "alpha3");
-      motion->odometry.alpha4 = non_negative(in, 5, "alpha4");
+      in.expect_fields(7, 7, "motion odometry");
+      motion->odometry = read_twist_noise(in);
       break;
     case MotionModelKind::kVelocity:
-      in.expect_fields(6, 6, "motion velocity");
-      motion->velocity.sigma_v_mps = non_negative(in, 2, "sigma_v");
-      motion->velocity.sigma_omega_radps = non_negative(in, 3, "sigma_omega");
-      motion->velocity.alpha_v = non_negative(in, 4, "alpha_v");
-      motion->velocity.alpha_omega = non_negative(in, 5, "alpha_omega");
+      in.expect_fields(7, 7, "motion velocity");
+      motion->velocity = read_twist_noise(in);
       break;
     case MotionModelKind::kAckermann:
       in.expect_fields(8, 8, "motion ackermann");
-      motion->ackermann.sigma_v_mps = non_negative(in, 2, "sigma_v");
-      motion->ackermann.sigma_steer_rad = non_negative(in, 3, "sigma_steer");
+      motion->ackermann.q_v = non_negative(in, 2, "q_v");
+      motion->ackermann.q_steer = non_negative(in, 3, "q_steer");
       motion->vehicle.wheelbase_m = in.number(4, "wheelbase");
       if (motion->vehicle.wheelbase_m <= 0.0) in.fail("wheelbase", "must be positive");
       motion->vehicle.encoder_offset_m = in.number(5, "encoder_offset");
@@ -64,10 +71,14 @@ void read_motion(const TextReader& in, MotionModel* motion) {
 Scenario read_scenario(const std::string& path) {
   TextReader in(path);
   Scenario s;
-  if (!in.next()) throw InputError(path, 0, "header", "empty file (expected 'arbor-scenario 1')");
-  if (in.field(0) != kHeader) in.fail("header", "not a scenario file (first line must be 'arbor-scenario 1')");
+  if (!in.next()) throw InputError(path, 0, "header", "empty file (expected 'arbor-scenario 2')");
+  if (in.field(0) != kHeader) in.fail("header", "not a scenario file (first line must be 'arbor-scenario 2')");
   in.expect_fields(2, 2, "header");
-  if (in.integer(1, "version") != kVersion) in.fail("version", fmt::format("unsupported version (this build reads {})", kVersion));
+  const std::int64_t version = in.integer(1, "version");
+  if (version == 1)
+    in.fail("version", "version 1 scenarios hold per-reading motion noise, which this build no longer reads; "
+                       "re-create the file with this build's `arbor simulate` or `arbor convert`");
+  if (version != kVersion) in.fail("version", fmt::format("unsupported version (this build reads {})", kVersion));
 
   bool have_sensor = false, have_motion = false, have_initial = false, ended = false;
   int scan_expected = 0;  // measurements still owed by the current scan
@@ -196,14 +207,13 @@ void write_scenario(const Scenario& s, const std::string& path) {
   const MotionModel& m = s.motion;
   switch (m.kind) {
     case MotionModelKind::kOdometry:
-      emit("motion odometry {} {} {} {}\n", m.odometry.alpha1, m.odometry.alpha2, m.odometry.alpha3, m.odometry.alpha4);
+    case MotionModelKind::kVelocity: {
+      const TwistNoise& n = m.kind == MotionModelKind::kOdometry ? m.odometry : m.velocity;
+      emit("motion {} {} {} {} {} {}\n", to_string(m.kind), n.q_v, n.q_omega, n.k_v, n.k_wv, n.k_ww);
       break;
-    case MotionModelKind::kVelocity:
-      emit("motion velocity {} {} {} {}\n", m.velocity.sigma_v_mps, m.velocity.sigma_omega_radps, m.velocity.alpha_v,
-           m.velocity.alpha_omega);
-      break;
+    }
     case MotionModelKind::kAckermann:
-      emit("motion ackermann {} {} {} {} {} {}\n", m.ackermann.sigma_v_mps, m.ackermann.sigma_steer_rad,
+      emit("motion ackermann {} {} {} {} {} {}\n", m.ackermann.q_v, m.ackermann.q_steer,
            m.vehicle.wheelbase_m, m.vehicle.encoder_offset_m, m.vehicle.laser_forward_m, m.vehicle.laser_left_m);
       break;
   }

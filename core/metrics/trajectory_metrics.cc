@@ -92,6 +92,13 @@ double pose_nees(const Pose2& estimate, const Mat3& covariance, const Pose2& tru
   return e.dot(P.lu().solve(e));
 }
 
+double fraction_in_band(const std::vector<double>& values, NeesBand band) {
+  if (values.empty()) return 0.0;
+  std::size_t inside = 0;
+  for (double v : values) inside += v >= band.low && v <= band.high;
+  return static_cast<double>(inside) / static_cast<double>(values.size());
+}
+
 std::vector<TimedPose> dead_reckoning(const Scenario& scenario) {
   std::vector<TimedPose> out;
   Pose2 pose = scenario.initial_pose;

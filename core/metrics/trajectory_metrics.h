@@ -42,6 +42,16 @@ std::optional<double> landmark_rmse(const std::vector<Landmark>& map, const std:
 // Normalised estimation error squared e^T P^-1 e of a pose estimate (3 dof).
 double pose_nees(const Pose2& estimate, const Mat3& covariance, const Pose2& truth);
 
+// The two-sided 95 % interval of a chi-square(3) variable: a consistent filter's single-run pose NEES lies in
+// it at 95 % of steps (Bar-Shalom, Li & Kirubarajan 2001, §5.4.2).
+struct NeesBand {
+  double low, high;
+};
+inline constexpr NeesBand kNeesBand3Dof95{0.2158, 9.3484};
+
+// The share of values inside [band.low, band.high]; 0 for an empty input.
+double fraction_in_band(const std::vector<double>& values, NeesBand band);
+
 // Dead reckoning: the scenario's controls applied without noise from the initial pose, at every step.
 std::vector<TimedPose> dead_reckoning(const Scenario& scenario);
 

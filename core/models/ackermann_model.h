@@ -8,6 +8,7 @@
 
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
+#include "core/models/twist_motion.h"
 
 namespace arbor {
 
@@ -18,38 +19,45 @@ struct AckermannVehicle {
   double laser_left_m = 0.50;       // b
 };
 
+// White noise on the wheel speed and on the steering angle, as power spectral densities: over an interval
+// of T seconds the speed error integrates to a distance variance q_v T and the steering error to a heading
+// variance (v tan'(alpha) / L)^2 q_steer T. (For a per-reading sigma at a reading period dt0 the equivalent
+// density is sigma^2 dt0.)
 struct AckermannNoise {
-  double sigma_v_mps = 0.7;                     // speed (ACFR reference filter's tuning)
-  double sigma_steer_rad = 7.0 * M_PI / 180.0;  // steering
+  double q_v = 0.01;        // m^2/s
+  double q_steer = 2.5e-5;  // rad^2 s
 };
 
-// v_c = v_e / (1 - tan(alpha) H / L) converts the wheel speed to the axle centre; with k = v_c tan(alpha) / L:
-//   x'   = x + dt (v_c cos(phi) - k (a sin(phi) + b cos(phi)))
-//   y'   = y + dt (v_c sin(phi) + k (a cos(phi) - b sin(phi)))
-//   phi' = phi + dt k
-inline Pose2 ackermann_apply(const Pose2& x, const Vec3& u, const AckermannVehicle& car, Mat3* J_pose, Mat3* J_u) {
-  const double v_e = u[0], alpha = u[1], dt = u[2];
+// The laser's body-frame twist for a control, and d twist / d (v_e, alpha). With v_c = v_e / (1 - tan(alpha)
+// H / L) the axle-centre speed and k = v_c tan(alpha) / L the turn rate, the laser at (a, b) from the axle
+// centre moves with (v_c - k b, k a) and turns at k.
+inline Twist ackermann_twist(const Vec3& u, const AckermannVehicle& car, Mat32* d_twist = nullptr) {
+  const double v_e = u[0], alpha = u[1];
   const double L = car.wheelbase_m, H = car.encoder_offset_m, a = car.laser_forward_m, b = car.laser_left_m;
   const double T = std::tan(alpha), sec2 = 1.0 + T * T;
   const double D = 1.0 - T * H / L;
   const double v_c = v_e / D;
   const double k = v_c * T / L;
-  const double c = std::cos(x.theta), s = std::sin(x.theta);
-  const double px = a * s + b * c, py = a * c - b * s;
-  const double vx = v_c * c - k * px, vy = v_c * s + k * py;
-  if (J_pose) *J_pose << 1, 0, dt * (-v_c * s - k * py), 0, 1, dt * (v_c * c - k * px), 0, 0, 1;
-  if (J_u) {
+  if (d_twist) {
     const double dvc_dve = 1.0 / D, dvc_dalpha = v_e * (H / L) * sec2 / (D * D);
     const double dk_dve = dvc_dve * T / L, dk_dalpha = (dvc_dalpha * T + v_c * sec2) / L;
-    *J_u << dt * (c * dvc_dve - px * dk_dve), dt * (c * dvc_dalpha - px * dk_dalpha), vx,  //
-        dt * (s * dvc_dve + py * dk_dve), dt * (s * dvc_dalpha + py * dk_dalpha), vy,      //
-        dt * dk_dve, dt * dk_dalpha, k;
+    *d_twist << dvc_dve - b * dk_dve, dvc_dalpha - b * dk_dalpha,  //
+        a * dk_dve, a * dk_dalpha,                                  //
+        dk_dve, dk_dalpha;
   }
-  return {x.x + dt * vx, x.y + dt * vy, wrap_angle(x.theta + dt * k)};
+  return {v_c - k * b, k * a, k};
 }
 
-inline Mat3 ackermann_control_covariance(const AckermannNoise& n) {
-  return Vec3(n.sigma_v_mps * n.sigma_v_mps, n.sigma_steer_rad * n.sigma_steer_rad, 0.0).asDiagonal();
+// The laser's exact end pose after dt = u[2] of constant (v_e, alpha) (Guivant & Nebot 2001 integrate the
+// same velocities with an Euler step; the arc agrees to O(dt^2) and does not change when a reading is split).
+inline Pose2 ackermann_apply(const Pose2& x, const Vec3& u, const AckermannVehicle& car, Mat3* J_pose) {
+  return apply_twist(x, ackermann_twist(u, car), u[2], J_pose);
+}
+
+inline Mat3 ackermann_process_noise(const Pose2& x, const Vec3& u, const AckermannVehicle& car, const AckermannNoise& n) {
+  Mat32 B;
+  const Twist xi = ackermann_twist(u, car, &B);
+  return twist_process_noise(x.theta, xi, u[2], B, Vec2(n.q_v, n.q_steer).asDiagonal());
 }
 
 }  // namespace arbor

@@ -1,6 +1,6 @@
 // The motion model a scenario names, behind one small value type the engine can call per particle.
-// Every model is "apply a noisy control": sampling perturbs u with its covariance Q_u and applies it
-// (Probabilistic Robotics' sample_motion_model), and the Gaussian prediction is J_u Q_u J_u^T.
+// Every model is a noise-free propagation plus the covariance its continuous-time noise adds over the
+// control's interval; the engine accumulates both between scans and samples once per scan.
 #ifndef ARBOR_CORE_MODELS_MOTION_MODEL_H_
 #define ARBOR_CORE_MODELS_MOTION_MODEL_H_
 
@@ -26,32 +26,33 @@ struct MotionModel {
   AckermannNoise ackermann;
   AckermannVehicle vehicle;
 
-  // Noise-free propagation of pose x by control u, with optional Jacobians d x'/d x and d x'/d u.
-  Pose2 apply(const Pose2& x, const Vec3& u, Mat3* J_pose = nullptr, Mat3* J_u = nullptr) const {
+  // Noise-free propagation of pose x by control u, with optional Jacobian d x'/d x.
+  Pose2 apply(const Pose2& x, const Vec3& u, Mat3* J_pose = nullptr) const {
     switch (kind) {
-      case MotionModelKind::kOdometry: return odometry_apply(x, u, J_pose, J_u);
-      case MotionModelKind::kVelocity: return velocity_apply(x, u, J_pose, J_u);
-      case MotionModelKind::kAckermann: return ackermann_apply(x, u, vehicle, J_pose, J_u);
+      case MotionModelKind::kOdometry: return odometry_apply(x, u, J_pose, nullptr);
+      case MotionModelKind::kVelocity: return velocity_apply(x, u, J_pose, nullptr);
+      case MotionModelKind::kAckermann: return ackermann_apply(x, u, vehicle, J_pose);
     }
     return x;
   }
-  // Q_u: covariance of the control noise, in control space (the dt component is noise-free).
-  Mat3 control_covariance(const Vec3& u) const {
+  // Covariance that the control adds to an exact start pose x over its interval, from the continuous-time
+  // noise (core/models/twist_motion.h). dt is the step's duration: the velocity and Ackermann controls carry
+  // their own (u[2]); the odometry reading does not.
+  Mat3 process_noise(const Pose2& x, const Vec3& u, double dt) const {
     switch (kind) {
-      case MotionModelKind::kOdometry: return odometry_control_covariance(u, odometry);
-      case MotionModelKind::kVelocity: return velocity_control_covariance(u, velocity);
-      case MotionModelKind::kAckermann: return ackermann_control_covariance(ackermann);
+      case MotionModelKind::kOdometry: return odometry_process_noise(x, u, dt, odometry);
+      case MotionModelKind::kVelocity: return velocity_process_noise(x, u, velocity);
+      case MotionModelKind::kAckermann: return ackermann_process_noise(x, u, vehicle, ackermann);
     }
     return Mat3::Zero();
   }
-  // Covariance of the predicted pose given an exact starting pose: J_u Q_u J_u^T, plus a tiny floor that
-  // keeps it positive definite when the robot stands still.
-  Mat3 prediction_covariance(const Pose2& x, const Vec3& u) const {
-    Mat3 J_u;
-    apply(x, u, nullptr, &J_u);
-    Mat3 P = J_u * control_covariance(u) * J_u.transpose();
-    P.diagonal().array() += 1e-12;
-    return P;
+  // EKF prediction through one control (Probabilistic Robotics Table 3.3, line 3): x <- g(x, u) and
+  // P <- G_x P G_x^T + Q_d.
+  void predict(Pose2* x, Mat3* P, const Vec3& u, double dt) const {
+    const Mat3 Q = process_noise(*x, u, dt);
+    Mat3 G = Mat3::Identity();
+    *x = apply(*x, u, &G);
+    *P = G * *P * G.transpose() + Q;
   }
 };
 

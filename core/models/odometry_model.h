@@ -3,19 +3,30 @@
 #ifndef ARBOR_CORE_MODELS_ODOMETRY_MODEL_H_
 #define ARBOR_CORE_MODELS_ODOMETRY_MODEL_H_
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
+#include "core/models/twist_motion.h"
 
 namespace arbor {
 
-// alpha1..alpha4 as in Probabilistic Robotics Table 5.6 (variances grow with the motion), plus floors so a
-// standing robot still has a positive definite prediction covariance (FastSLAM 2.0 samples from it).
-struct OdometryNoise {
-  double alpha1 = 0.0025, alpha2 = 0.0005, alpha3 = 0.0025, alpha4 = 0.0005;
-  double min_rot_sigma_rad = 1e-4, min_trans_sigma_m = 1e-4;
-};
+// The reading (rot1, trans, rot2) is what the wheels did over the step's duration dt; for the noise it is
+// taken as the constant-curvature arc with the same heading change rot1 + rot2 and the same chord (a
+// differential drive read at 10-100 Hz moves on such arcs), with noise per TwistNoise. The mean is the
+// rotate-translate-rotate motion itself, which is the arc's end pose when rot1 = rot2.
+using OdometryNoise = TwistNoise;
+
+// The arc of a reading: its twist over dt, and the start heading offset that makes the arc's chord point
+// along theta + rot1 (zero when rot1 = rot2).
+inline Twist odometry_twist(const Vec3& u, double dt, double* heading_offset) {
+  const double turn = wrap_angle(u[0]) + wrap_angle(u[2]);
+  const double half = 0.5 * turn;
+  const double arc_per_chord = std::abs(half) > 1e-6 ? half / std::sin(half) : 1.0 + half * half / 6.0;
+  *heading_offset = wrap_angle(u[0]) - half;
+  return {u[1] * arc_per_chord / dt, 0.0, turn / dt};
+}
 
 // x' = x + trans*cos(theta + rot1), y' = y + trans*sin(theta + rot1), theta' = theta + rot1 + rot2.
 inline Pose2 odometry_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J_u) {
@@ -26,13 +37,13 @@ inline Pose2 odometry_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J
   return {x.x + u[1] * c, x.y + u[1] * s, wrap_angle(heading + u[2])};
 }
 
-inline Mat3 odometry_control_covariance(const Vec3& u, const OdometryNoise& n) {
-  const double rot1 = wrap_angle(u[0]), trans = u[1], rot2 = wrap_angle(u[2]);
-  const double var_rot1 = n.alpha1 * rot1 * rot1 + n.alpha2 * trans * trans + n.min_rot_sigma_rad * n.min_rot_sigma_rad;
-  const double var_trans =
-      n.alpha3 * trans * trans + n.alpha4 * (rot1 * rot1 + rot2 * rot2) + n.min_trans_sigma_m * n.min_trans_sigma_m;
-  const double var_rot2 = n.alpha1 * rot2 * rot2 + n.alpha2 * trans * trans + n.min_rot_sigma_rad * n.min_rot_sigma_rad;
-  return Vec3(var_rot1, var_trans, var_rot2).asDiagonal();
+// Covariance the reading adds to the pose (world frame), dt its duration (a floor keeps dt = 0 finite: the
+// motion-proportional terms are per distance and per radian, so they stay right as dt shrinks).
+inline Mat3 odometry_process_noise(const Pose2& x, const Vec3& u, double dt, const OdometryNoise& n) {
+  dt = std::max(dt, 1e-9);
+  double offset = 0.0;
+  const Twist xi = odometry_twist(u, dt, &offset);
+  return twist_process_noise(x.theta + offset, xi, dt, forward_turn_noise_map(), n.psd(xi.v_x, xi.omega));
 }
 
 // The odometry control that takes pose a to pose b (inverse of odometry_apply), used by the simulator.

@@ -7,14 +7,12 @@
 
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
+#include "core/models/twist_motion.h"
 
 namespace arbor {
 
-// var_v = sigma_v^2 + alpha_v*v^2, var_omega = sigma_omega^2 + alpha_omega*omega^2 (per unit of dt^0: the
-// control itself is noisy, the integration below turns it into pose noise).
-struct VelocityNoise {
-  double sigma_v_mps = 0.05, sigma_omega_radps = 0.05, alpha_v = 0.0, alpha_omega = 0.0;
-};
+// White noise on the commanded v and omega (TwistNoise: densities per second, per metre and per radian).
+using VelocityNoise = TwistNoise;
 
 // In the robot frame the arc moves (v*f, v*g) with f = sin(w dt)/w, g = (1 - cos(w dt))/w.
 inline Pose2 velocity_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J_u) {
@@ -47,10 +45,9 @@ inline Pose2 velocity_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J
   return {x.x + c * dx_r - s * dy_r, x.y + s * dx_r + c * dy_r, wrap_angle(x.theta + wdt)};
 }
 
-inline Mat3 velocity_control_covariance(const Vec3& u, const VelocityNoise& n) {
-  const double var_v = n.sigma_v_mps * n.sigma_v_mps + n.alpha_v * u[0] * u[0];
-  const double var_w = n.sigma_omega_radps * n.sigma_omega_radps + n.alpha_omega * u[1] * u[1];
-  return Vec3(var_v, var_w, 0.0).asDiagonal();
+// Covariance the control adds to the pose over its dt = u[2] (world frame).
+inline Mat3 velocity_process_noise(const Pose2& x, const Vec3& u, const VelocityNoise& n) {
+  return twist_process_noise(x.theta, {u[0], 0.0, u[1]}, u[2], forward_turn_noise_map(), n.psd(u[0], u[1]));
 }
 
 }  // namespace arbor

@@ -25,6 +25,7 @@ struct ConvertOptions {
   bool estimate_noise = false;
   bool strict = false;
   double max_gps_speed = 0.0;
+  double noise_window_s = 1.0;
 };
 
 // GPS noise allowance of the jump test: fixes within this of where the vehicle could have driven are kept.
@@ -39,9 +40,10 @@ std::string default_input(const std::string& from) {
 }
 
 void print_measurement_estimate(const MeasurementNoiseEstimate& m) {
-  fmt::print("  measurement noise from {} residuals: sigma_range {:.4f} m (bias {:+.4f}), sigma_bearing {:.4f} rad "
-             "(bias {:+.4f}), outliers beyond 5 sigma {:.1f} %\n",
-             m.count, m.sigma_range_m, m.range_bias_m, m.sigma_bearing_rad, m.bearing_bias_rad, 100.0 * m.outlier_fraction);
+  fmt::print("  measurement noise from {} residuals: sigma_range {:.4f} m (MAD {:.4f}, bias {:+.4f}), sigma_bearing "
+             "{:.4f} rad (MAD {:.4f}, bias {:+.4f}); beyond 3 sigma {:.1f} %, beyond 5 sigma (dropped) {:.1f} %\n",
+             m.count, m.sigma_range_m, m.mad_sigma_range_m, m.range_bias_m, m.sigma_bearing_rad, m.mad_sigma_bearing_rad,
+             m.bearing_bias_rad, 100.0 * m.beyond_3sigma_fraction, 100.0 * m.outlier_fraction);
 }
 
 int run_convert(const ConvertOptions& o) {
@@ -59,17 +61,17 @@ int run_convert(const ConvertOptions& o) {
     scenario = load_utias_mrclam(input, options, &report);
     if (o.estimate_noise) {
       const MeasurementNoiseEstimate m = estimate_measurement_noise(scenario);
-      const MotionNoiseEstimate u = estimate_motion_noise(scenario);
+      const MotionNoiseEstimate u = estimate_motion_noise(scenario, o.noise_window_s);
       print_measurement_estimate(m);
-      fmt::print("  motion noise from {} windows of 1 s: sigma_v {:.4f} m/s, sigma_omega {:.4f} rad/s\n", u.windows,
-                 u.sigma_u1, u.sigma_u2);
+      fmt::print("  motion noise from {} windows of {} s: q_v {:.3g} m^2/s (MAD {:.3g}), q_omega {:.3g} rad^2/s (MAD {:.3g})\n",
+                 u.windows, o.noise_window_s, u.q_1, u.mad_q_1, u.q_2, u.mad_q_2);
       if (m.count > 0) {
         scenario.sensor.sigma_range_m = m.sigma_range_m;
         scenario.sensor.sigma_bearing_rad = m.sigma_bearing_rad;
       }
       if (u.windows > 0) {
-        scenario.motion.velocity.sigma_v_mps = u.sigma_u1;
-        scenario.motion.velocity.sigma_omega_radps = u.sigma_u2;
+        scenario.motion.velocity.q_v = u.q_1;
+        scenario.motion.velocity.q_omega = u.q_2;
       }
     }
   } else if (o.from == "acfr-car-park") {
@@ -79,13 +81,13 @@ int run_convert(const ConvertOptions& o) {
       fmt::print("  {} scans with >= 3 beacons fitted; GPS-to-laser lever arm ({:.2f}, {:.2f}) m\n", e.fitted_scans,
                  e.gps_to_laser_m.x(), e.gps_to_laser_m.y());
       print_measurement_estimate(e.measurement);
-      fmt::print("  motion noise from {} windows of 2 s on the GPS track: sigma_v {:.4f} m/s, sigma_steer {:.4f} rad\n",
-                 e.motion.windows, e.motion.sigma_u1, e.motion.sigma_u2);
+      fmt::print("  motion noise from {} windows of 2 s on the GPS track: q_v {:.3g} m^2/s (MAD {:.3g}), q_steer {:.3g} "
+                 "rad^2 s (MAD {:.3g})\n", e.motion.windows, e.motion.q_1, e.motion.mad_q_1, e.motion.q_2, e.motion.mad_q_2);
       if (e.measurement.count > 0) {
         scenario.sensor.sigma_range_m = e.measurement.sigma_range_m;
         scenario.sensor.sigma_bearing_rad = e.measurement.sigma_bearing_rad;
       }
-      if (e.motion.windows > 0) scenario.motion.ackermann = {e.motion.sigma_u1, e.motion.sigma_u2};
+      if (e.motion.windows > 0) scenario.motion.ackermann = {e.motion.q_1, e.motion.q_2};
     }
   } else if (o.from == "isam") {
     if (o.estimate_noise) throw InputError("", 0, "--estimate-noise", "the iSAM file states its own covariances; nothing to estimate");
@@ -127,6 +129,11 @@ void add_convert_command(CLI::App& app, CommandAction* action) {
                 "write the estimates into the scenario instead of the documented defaults");
   cmd->add_flag("--strict", options->strict,
                 "UTIAS: treat unknown barcodes (known false detections) as errors instead of dropping and counting them");
+  cmd->add_option("--noise-window", options->noise_window_s,
+                  "UTIAS --estimate-noise: length [s] of the replayed motion windows (the command errors are correlated "
+                  "in time, so the density grows with the window; choose about the time between scans)")
+      ->check(CLI::Range(0.05, 60.0))
+      ->capture_default_str();
   cmd->add_option("--max-gps-speed", options->max_gps_speed,
                   "Victoria Park, Car Park: drop GPS fixes that imply more than this speed [m/s] from the last kept fix "
                   "(GPS jumps; 0 keeps every fix). The ute's top speed in the data is 6.6 m/s")

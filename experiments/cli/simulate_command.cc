@@ -22,7 +22,11 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--density", options->world.density_per_m2,
                   "Landmarks per square metre (keeps the number in view per scan constant as N grows)")
       ->capture_default_str();
-  cmd->add_option("--steps", options->steps, "Number of time steps (one odometry reading and one scan each)")
+  cmd->add_option("--steps", options->steps, "Number of scans (with --controls-per-scan K, K odometry readings each)")
+      ->capture_default_str();
+  cmd->add_option("--controls-per-scan", options->controls_per_scan,
+                  "Odometry readings between two scans, as real robots log them (the noise is continuous-time, so "
+                  "the truth's statistics do not depend on K)")
       ->capture_default_str();
   cmd->add_option("--clutter", options->clutter_rate, "Expected spurious measurements per scan (Poisson rate)")
       ->capture_default_str();
@@ -37,9 +41,10 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
       ->capture_default_str();
   auto odometry_noise = std::make_shared<std::vector<double>>();
   cmd->add_option("--odometry-noise", *odometry_noise,
-                  "Odometry noise alpha1 alpha2 alpha3 alpha4 (Probabilistic Robotics Table 5.6: rotation from "
-                  "rotation, rotation from translation, translation from translation, translation from rotation)")
-      ->expected(4);
+                  "Odometry noise densities q_v q_omega k_v k_wv k_ww: speed [m^2/s], turn rate [rad^2/s], "
+                  "distance variance per metre [m], heading variance per metre [rad^2/m] and per radian turned "
+                  "[rad^2/rad] (docs/scenario_format.md)")
+      ->expected(5);
   cmd->add_flag("--signatures", options->signatures, "Report a noisy scalar signature with each measurement");
   cmd->add_option("--seed", options->seed, "Seed of the world and of all noise")->capture_default_str();
   cmd->add_option("--out", *out, "Scenario file to write")->required();
@@ -51,10 +56,8 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
       if (!odometry_noise->empty()) {
         for (double a : *odometry_noise)
           if (!(a >= 0.0)) throw InputError("", 0, "odometry-noise", "noise parameters must not be negative");
-        options->odometry.alpha1 = (*odometry_noise)[0];
-        options->odometry.alpha2 = (*odometry_noise)[1];
-        options->odometry.alpha3 = (*odometry_noise)[2];
-        options->odometry.alpha4 = (*odometry_noise)[3];
+        const auto& q = *odometry_noise;
+        options->odometry = OdometryNoise{q[0], q[1], q[2], q[3], q[4]};
       }
       const Scenario scenario = simulate(*options);
       write_scenario(scenario, *out);

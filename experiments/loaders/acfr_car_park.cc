@@ -219,7 +219,7 @@ Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const Be
   s.metadata["truth_track"] = "gps_east_north_m";
   s.motion.kind = MotionModelKind::kAckermann;
   s.motion.vehicle = AckermannVehicle{2.83, 0.76, 3.78, 0.50};
-  s.motion.ackermann = {CarParkNoiseDefaults::kSigmaVMps, CarParkNoiseDefaults::kSigmaSteerRad};
+  s.motion.ackermann = {CarParkNoiseDefaults::kQvM2ps, CarParkNoiseDefaults::kQsteerRad2s};
   s.sensor.max_range_m = extraction.max_range_m;
   s.sensor.min_range_m = extraction.min_range_m;
   s.sensor.fov_rad = kPi;

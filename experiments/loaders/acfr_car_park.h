@@ -31,8 +31,8 @@ std::vector<Measurement> extract_beacons(const std::vector<double>& ranges_m, co
 struct CarParkNoiseDefaults {
   static constexpr double kSigmaRangeM = 0.017;
   static constexpr double kSigmaBearingRad = 0.0044;
-  static constexpr double kSigmaVMps = 0.17;
-  static constexpr double kSigmaSteerRad = 0.13;
+  static constexpr double kQvM2ps = 0.17 * 0.17 * 0.025;      // wheel-speed density [m^2/s]
+  static constexpr double kQsteerRad2s = 0.13 * 0.13 * 0.025;  // steering density [rad^2 s]
 };
 
 Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const BeaconExtraction& extraction = {});

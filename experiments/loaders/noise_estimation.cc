@@ -25,6 +25,24 @@ double robust_sigma(std::vector<double> e) {
   return 1.4826 * median(std::move(e));
 }
 
+double tail_respecting_sigma(const std::vector<double>& e, double center, double robust) {
+  if (e.empty()) return 0.0;
+  double sigma = robust;
+  // Two passes: drop residuals beyond 5 sigma (gross outliers), take the standard deviation of the rest.
+  for (int pass = 0; pass < 2 && sigma > 0.0; ++pass) {
+    double sum = 0.0;
+    std::int64_t n = 0;
+    for (double x : e)
+      if (std::abs(x - center) <= 5.0 * sigma) {
+        sum += (x - center) * (x - center);
+        ++n;
+      }
+    if (n == 0) break;
+    sigma = std::sqrt(sum / n);
+  }
+  return sigma;
+}
+
 MeasurementNoiseEstimate estimate_measurement_noise(const Scenario& s, double dof_scale) {
   std::map<std::int32_t, Vec2> landmark;
   for (const auto& l : s.truth_landmarks) landmark[l.id] = l.position;
@@ -44,20 +62,61 @@ MeasurementNoiseEstimate estimate_measurement_noise(const Scenario& s, double do
   if (er.empty()) return out;
   out.range_bias_m = median(er);
   out.bearing_bias_rad = median(eb);
-  out.sigma_range_m = dof_scale * robust_sigma(er);
-  out.sigma_bearing_rad = dof_scale * robust_sigma(eb);
-  std::int64_t outliers = 0;
-  for (std::size_t i = 0; i < er.size(); ++i)
-    if (std::abs(er[i] - out.range_bias_m) > 5 * out.sigma_range_m || std::abs(eb[i] - out.bearing_bias_rad) > 5 * out.sigma_bearing_rad)
-      ++outliers;
+  out.mad_sigma_range_m = dof_scale * robust_sigma(er);
+  out.mad_sigma_bearing_rad = dof_scale * robust_sigma(eb);
+  out.sigma_range_m = dof_scale * tail_respecting_sigma(er, out.range_bias_m, out.mad_sigma_range_m / dof_scale);
+  out.sigma_bearing_rad = dof_scale * tail_respecting_sigma(eb, out.bearing_bias_rad, out.mad_sigma_bearing_rad / dof_scale);
+  std::int64_t outliers = 0, beyond3 = 0;
+  for (std::size_t i = 0; i < er.size(); ++i) {
+    const double r = std::abs(er[i] - out.range_bias_m) / out.sigma_range_m;
+    const double b = std::abs(eb[i] - out.bearing_bias_rad) / out.sigma_bearing_rad;
+    outliers += r > 5.0 || b > 5.0;
+    beyond3 += r > 3.0 || b > 3.0;
+  }
   out.outlier_fraction = static_cast<double>(outliers) / static_cast<double>(er.size());
+  out.beyond_3sigma_fraction = static_cast<double>(beyond3) / static_cast<double>(er.size());
   return out;
 }
 
-MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, double min_speed) {
+namespace {
+
+// The scenario's motion model with unit density on one noise source (0: speed, 1: turn rate or steering) and
+// none on the others: its process noise is d Q_d / d q for that source.
+MotionModel unit_noise_model(MotionModel m, int source) {
+  m.odometry = m.velocity = TwistNoise{0.0, 0.0, 0.0, 0.0, 0.0};
+  m.ackermann = AckermannNoise{0.0, 0.0};
+  if (m.kind == MotionModelKind::kAckermann) {
+    (source == 0 ? m.ackermann.q_v : m.ackermann.q_steer) = 1.0;
+  } else {
+    TwistNoise& n = m.kind == MotionModelKind::kOdometry ? m.odometry : m.velocity;
+    (source == 0 ? n.q_v : n.q_omega) = 1.0;
+  }
+  return m;
+}
+
+// Fits q from ratios r_i = e_i^2 / A_i (each a chi-square(1) times q): q_mad = median / 0.4549, then the mean
+// of the ratios within 5 sigma (25 q), twice.
+void fit_density(const std::vector<double>& ratio, double* q_mad, double* q) {
   constexpr double kMedianChi2OneDof = 0.4549;
+  *q_mad = median(ratio) / kMedianChi2OneDof;
+  *q = *q_mad;
+  for (int pass = 0; pass < 2 && *q > 0.0; ++pass) {
+    double sum = 0.0;
+    std::int64_t n = 0;
+    for (double r : ratio)
+      if (r <= 25.0 * *q) {
+        sum += r;
+        ++n;
+      }
+    if (n > 0) *q = sum / n;
+  }
+}
+
+}  // namespace
+
+MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, double min_speed) {
   std::vector<double> ratio_1, ratio_2;
-  MotionModel model = s.motion;
+  const MotionModel model = s.motion, unit_1 = unit_noise_model(s.motion, 0), unit_2 = unit_noise_model(s.motion, 1);
   const std::size_t n = s.steps.size();
   std::size_t i = 0;
   while (i < n) {
@@ -65,23 +124,25 @@ MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, do
       ++i;
       continue;
     }
-    // Replay from step i's truth pose until a truth step at least window_s later.
+    // Replay from step i's truth pose until a truth step at least window_s later; A and B are the window's
+    // predicted covariance per unit density of each source.
     Pose2 x = *s.steps[i].truth_pose;
     Mat3 A = Mat3::Zero(), B = Mat3::Zero();
     double distance = 0.0;
     std::size_t j = i + 1;
     for (; j < n; ++j) {
       const Vec3& u = s.steps[j].control;
-      Mat3 J_x = Mat3::Identity(), J_u = Mat3::Zero();
-      x = model.apply(x, u, &J_x, &J_u);
-      A = J_x * A * J_x.transpose() + J_u.col(0) * J_u.col(0).transpose();
-      B = J_x * B * J_x.transpose() + J_u.col(1) * J_u.col(1).transpose();
-      distance += std::abs(u[0]) * u[2];
+      const double dt = s.steps[j].time_s - s.steps[j - 1].time_s;
+      Pose2 x_a = x, x_b = x;
+      unit_1.predict(&x_a, &A, u, dt);
+      unit_2.predict(&x_b, &B, u, dt);
+      distance += (model.apply(x, u).position() - x.position()).norm();
+      x = x_a;
       if (s.steps[j].truth_pose && s.steps[j].time_s - s.steps[i].time_s >= window_s) break;
     }
     if (j >= n) break;
     const double duration = s.steps[j].time_s - s.steps[i].time_s;
-    // Windows across long gaps in the truth (or in the controls) say nothing about per-step noise.
+    // Windows across long gaps in the truth (or in the controls) say nothing about the noise.
     if (duration <= 2.0 * window_s && distance / duration >= min_speed) {
       const Pose2& truth = *s.steps[j].truth_pose;
       const Vec2 along(std::cos(x.theta), std::sin(x.theta));
@@ -96,8 +157,8 @@ MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, do
   }
   MotionNoiseEstimate out;
   out.windows = static_cast<std::int64_t>(std::min(ratio_1.size(), ratio_2.size()));
-  out.sigma_u1 = std::sqrt(median(ratio_1) / kMedianChi2OneDof);
-  out.sigma_u2 = std::sqrt(median(ratio_2) / kMedianChi2OneDof);
+  fit_density(ratio_1, &out.mad_q_1, &out.q_1);
+  fit_density(ratio_2, &out.mad_q_2, &out.q_2);
   return out;
 }
 

@@ -176,7 +176,7 @@ Scenario load_utias_mrclam(const std::string& dir, const UtiasOptions& options, 
   s.metadata["robot"] = fmt::format("{}", options.robot);
   s.metadata["time_base"] = fmt::format("seconds_since_unix_time_{:.3f}", start_ms / 1000.0);
   s.motion.kind = MotionModelKind::kVelocity;
-  s.motion.velocity = {UtiasNoiseDefaults::kSigmaVMps, UtiasNoiseDefaults::kSigmaOmegaRadps, 0.0, 0.0};
+  s.motion.velocity = {UtiasNoiseDefaults::kQvM2ps, UtiasNoiseDefaults::kQomegaRad2ps, 0.0, 0.0, 0.0};
   // The camera: 0.9-8.6 m ranges and bearings within about +-0.6 rad in the data.
   s.sensor.max_range_m = 9.0;
   s.sensor.min_range_m = 0.0;

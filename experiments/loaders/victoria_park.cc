@@ -92,8 +92,8 @@ Scenario load_victoria_park(const std::string& dir, LoadReport* report, const Vi
 
   s.motion.kind = MotionModelKind::kAckermann;
   s.motion.vehicle = AckermannVehicle{2.83, 0.76, 3.78, 0.50};  // info.txt: L, H, L + a, b
-  s.motion.ackermann.sigma_v_mps = tuning.sigma_v_mps;
-  s.motion.ackermann.sigma_steer_rad = tuning.sigma_steer_rad;
+  s.motion.ackermann.q_v = tuning.q_v_m2ps;
+  s.motion.ackermann.q_steer = tuning.q_steer_rad2s;
 
   s.sensor.max_range_m = tuning.max_range_m;
   s.sensor.min_range_m = 0.0;

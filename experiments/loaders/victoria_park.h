@@ -23,8 +23,10 @@ inline constexpr std::int64_t kVictoriaParkOriginMs = 20967;
 
 // Tuning choices, not dataset facts (docs/datasets.md says why each was picked).
 struct VictoriaParkTuning {
-  double sigma_v_mps = 0.7;                  // ACFR reference filter's speed noise
-  double sigma_steer_rad = 0.03;             // about 1.7 degrees (grid against GPS: docs/datasets.md)
+  // Continuous-time densities (AckermannNoise); the per-reading sigmas they equal at the 40 Hz dead reckoning
+  // are sqrt(q / 0.025 s).
+  double q_v_m2ps = 0.7 * 0.7 * 0.025;       // 0.7 m/s per reading: the ACFR reference filter's speed noise
+  double q_steer_rad2s = 0.03 * 0.03 * 0.025;  // 0.03 rad per reading (grid against GPS: docs/datasets.md)
   double sigma_range_m = 0.5;                // tree centre from a trunk of 0.1-1.5 m diameter
   double sigma_bearing_rad = 0.02;           // about 1.1 degrees (0.5 degree beams, trunk width)
   double max_range_m = 30.0;                 // detections beyond it are dropped: rarely re-detected, poorly placed

@@ -160,6 +160,8 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
       if (p.step >= 0 && scenario.steps[p.step].truth_pose)
         nees.push_back(pose_nees(p.pose, p.covariance, *scenario.steps[p.step].truth_pose));
   r["nees_mean"] = mean_or_null(nees);
+  r["nees_median"] = nees.empty() ? Json(nullptr) : Json(quantile(nees, 0.5));
+  r["nees_in_band_fraction"] = nees.empty() ? Json(nullptr) : Json(fraction_in_band(nees, kNeesBand3Dof95));
   // The smoother takes its associations as given; their quality is scored in the run they came from.
   r["assoc_precision"] = nullptr;
   r["assoc_recall"] = nullptr;

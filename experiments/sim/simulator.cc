@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 
+#include <Eigen/Cholesky>
 #include <fmt/core.h>
 
 #include "core/engine/rng.h"
@@ -43,6 +44,8 @@ Scenario simulate(const SimulationOptions& o) {
   require(o.world.landmarks >= 1, "landmarks", "need at least one landmark");
   require(o.world.density_per_m2 > 0.0, "density", "density must be positive");
   require(o.steps >= 1, "steps", "need at least one step");
+  require(o.controls_per_scan >= 1 && o.controls_per_scan <= 1000, "controls-per-scan",
+          fmt::format("controls per scan must lie in [1, 1000] (got {})", o.controls_per_scan));
   require(o.speed_mps > 0.0 && o.dt_s > 0.0, "speed", "speed and dt must be positive");
   require(o.clutter_rate >= 0.0, "clutter", fmt::format("clutter rate must not be negative (got {})", o.clutter_rate));
   require(o.detection_probability > 0.0 && o.detection_probability <= 1.0, "detection",
@@ -58,6 +61,7 @@ Scenario simulate(const SimulationOptions& o) {
                 {"clutter_rate", fmt::format("{}", o.clutter_rate)},
                 {"detection_probability", fmt::format("{}", o.detection_probability)},
                 {"steps", fmt::format("{}", o.steps)},
+                {"controls_per_scan", fmt::format("{}", o.controls_per_scan)},
                 {"seed", fmt::format("{}", o.seed)}};
   s.motion.kind = MotionModelKind::kOdometry;
   s.motion.odometry = o.odometry;
@@ -73,26 +77,41 @@ Scenario simulate(const SimulationOptions& o) {
   s.start_time_s = 0.0;
   const LandmarkGrid grid(world, std::max(5.0, s.sensor.max_range_m));
   int target = 1;
+  ScenarioStep scan_step;
 
-  s.steps.reserve(o.steps);
+  s.steps.reserve(static_cast<std::size_t>(o.steps - 1) * o.controls_per_scan + 1);
+  const int K = o.controls_per_scan;
+  const double dt = o.dt_s / K;
   // Step 0 stands still and scans from the known initial pose: the first landmarks are anchored to it, as the
   // initial pose anchors the gauge. Without it the first motion's heading error rotates the whole map.
   for (int k = 0; k < o.steps; ++k) {
     RandomStream rng(o.seed, k, 0, RandomPurpose::kSimulation);
-    ScenarioStep step;
-    step.time_s = k * o.dt_s;
     if (k > 0) {
-      // Steer towards the next corner with a bounded turn rate, then move along the exact arc.
+      // Steer towards the next corner with a bounded turn rate, chosen once per scan interval; the robot moves
+      // along the exact arc, read by the odometer K times.
       if ((truth.position() - corners[target]).norm() < 1.5 * o.speed_mps * o.dt_s) target = (target + 1) % 4;
       const Vec2 to_target = corners[target] - truth.position();
       const double heading_error = wrap_angle(std::atan2(to_target.y(), to_target.x()) - truth.theta);
       const double omega = std::clamp(2.0 * heading_error / o.dt_s, -o.max_turn_rate_radps, o.max_turn_rate_radps);
-      const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, o.dt_s), nullptr, nullptr);
-      const Vec3 u_true = odometry_between(truth, next);
-      const Mat3 Q_u = odometry_control_covariance(u_true, o.odometry);
-      for (int i = 0; i < 3; ++i) step.control[i] = u_true[i] + std::sqrt(Q_u(i, i)) * rng.normal();
-      truth = next;
+      for (int c = 0; c < K; ++c) {
+        RandomStream odometer(o.seed, k, c + 1, RandomPurpose::kSimulation);
+        const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, dt), nullptr, nullptr);
+        // The odometer believes in a pose off the true one by a draw of the reading's own process noise, so
+        // that the filter's model (true = apply(reading) + noise of covariance Q_d) holds.
+        const Mat3 Q = odometry_process_noise(truth, odometry_between(truth, next), dt, o.odometry);
+        const Eigen::LLT<Mat3> llt(Q + 1e-18 * Mat3::Identity());
+        const Vec3 e = llt.matrixL() * Vec3(odometer.normal(), odometer.normal(), odometer.normal());
+        ScenarioStep step;
+        step.time_s = (k - 1) * o.dt_s + (c + 1) * dt;
+        step.control = odometry_between(truth, Pose2::from_vector(next.vector() + e));
+        step.truth_pose = next;
+        truth = next;
+        if (c + 1 < K) s.steps.push_back(std::move(step));
+        else scan_step = std::move(step);
+      }
     }
+    ScenarioStep step = k > 0 ? std::move(scan_step) : ScenarioStep{};
+    step.time_s = k * o.dt_s;
     step.truth_pose = truth;
     step.has_scan = true;
 

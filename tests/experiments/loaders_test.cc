@@ -342,8 +342,37 @@ TEST(NoiseEstimation, RecoversKnownVelocityNoiseFromReplayedWindows) {
   }
   const MotionNoiseEstimate e = estimate_motion_noise(s, 1.0);
   EXPECT_GT(e.windows, 500);
-  EXPECT_NEAR(e.sigma_u1, sigma_v, 0.15 * sigma_v);
-  EXPECT_NEAR(e.sigma_u2, sigma_w, 0.15 * sigma_w);
+  // Per-step white noise of variance sigma^2 at step dt is a density of sigma^2 dt.
+  EXPECT_NEAR(e.q_1, sigma_v * sigma_v * dt, 0.25 * sigma_v * sigma_v * dt);
+  EXPECT_NEAR(e.q_2, sigma_w * sigma_w * dt, 0.25 * sigma_w * sigma_w * dt);
+}
+
+// Heavy but real tails (Laplace residuals: standard deviation b sqrt(2), while 1.4826 MAD = 1.028 b): the
+// default estimate keeps them, the MAD figure does not; a filter told the MAD would be overconfident.
+TEST(NoiseEstimation, TheDefaultSigmaRespectsHeavyTails) {
+  Scenario s;
+  s.truth_landmarks = {{1, {5.0, 0.0}}};
+  std::mt19937_64 rng(5);
+  std::exponential_distribution<double> expo(1.0);
+  std::bernoulli_distribution sign(0.5);
+  const double b_range = 0.05, b_bearing = 0.01;
+  const auto laplace = [&](double b) { return (sign(rng) ? 1.0 : -1.0) * b * expo(rng); };
+  for (int k = 0; k < 20000; ++k) {
+    ScenarioStep step;
+    step.truth_pose = Pose2{0.0, 0.0, 0.0};
+    step.has_scan = true;
+    Measurement m;
+    m.range_m = 5.0 + laplace(b_range);
+    m.bearing_rad = laplace(b_bearing);
+    m.truth_id = 1;
+    step.measurements.push_back(m);
+    s.steps.push_back(step);
+  }
+  const MeasurementNoiseEstimate e = estimate_measurement_noise(s);
+  EXPECT_NEAR(e.sigma_range_m, b_range * std::sqrt(2.0), 0.05 * b_range * std::sqrt(2.0));
+  EXPECT_NEAR(e.sigma_bearing_rad, b_bearing * std::sqrt(2.0), 0.05 * b_bearing * std::sqrt(2.0));
+  EXPECT_NEAR(e.mad_sigma_range_m, 1.028 * b_range, 0.05 * b_range);
+  EXPECT_GT(e.beyond_3sigma_fraction, 0.01);  // Laplace: 1.4 % beyond 3 standard deviations
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -127,7 +127,7 @@ seed = [1, 2]
 TEST(SweepSpec, DatasetsResolveAgainstTheSpecFolderAndKeysDoNotDependOnIt) {
   ScratchDir dir("spec");
   std::filesystem::create_directories(dir / "data");
-  write_text(dir / "data/park.scn", "arbor-scenario 1\n");
+  write_text(dir / "data/park.scn", "arbor-scenario 2\n");
   const std::string text = R"(
 [scenarios]
 datasets = ["data/park.scn"]
@@ -148,7 +148,7 @@ seed = 1
   // The same spec elsewhere (another machine, another checkout) gives the same key and hash.
   ScratchDir other("spec_elsewhere");
   std::filesystem::create_directories(other / "data");
-  write_text(other / "data/park.scn", "arbor-scenario 1\n");
+  write_text(other / "data/park.scn", "arbor-scenario 2\n");
   const SweepSpec moved = spec_from(other, text);
   EXPECT_EQ(moved.runs[0].key(), spec.runs[0].key());
   EXPECT_EQ(moved.hash, spec.hash);

@@ -110,9 +110,10 @@ TEST_P(ChainedMotion, MatchesPropagationFromAnArbitraryStart) {
     Pose2 x = start;
     Mat3 P = Mat3::Zero();
     for (int k = kept[f] + 1; k <= kept[f + 1]; ++k) {
-      Mat3 Jx, Ju;
-      x = s.motion.apply(x, s.steps[k].control, &Jx, &Ju);
-      P = Jx * P * Jx.transpose() + Ju * s.motion.control_covariance(s.steps[k].control) * Ju.transpose();
+      const Mat3 Q = s.motion.process_noise(x, s.steps[k].control, s.steps[k].time_s - (k > 0 ? s.steps[k - 1].time_s : s.start_time_s));
+      Mat3 Jx;
+      x = s.motion.apply(x, s.steps[k].control, &Jx);
+      P = Jx * P * Jx.transpose() + Q;
     }
     const Pose2 delta = start.between(x);
     const BetweenFactor& b = g.betweens[f];

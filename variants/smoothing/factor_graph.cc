@@ -96,11 +96,11 @@ FactorGraph build_factor_graph(const Scenario& scenario, const SmootherAssociati
   Pose2 rel;
   Mat3 P = Mat3::Zero();
   Pose2 dead_reckoning = scenario.initial_pose;
+  double previous_time_s = scenario.start_time_s;
   for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
     const ScenarioStep& step = scenario.steps[k];
-    Mat3 J_pose, J_u;
-    rel = motion.apply(rel, step.control, &J_pose, &J_u);
-    P = J_pose * P * J_pose.transpose() + J_u * motion.control_covariance(step.control) * J_u.transpose();
+    motion.predict(&rel, &P, step.control, step.time_s - previous_time_s);
+    previous_time_s = step.time_s;
     const bool keep = step.has_scan || !step.measurements.empty() || step.truth_pose.has_value() ||
                       k + 1 == scenario.steps.size();
     if (!keep) continue;

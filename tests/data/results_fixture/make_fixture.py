@@ -108,7 +108,7 @@ os.makedirs(os.path.join(HERE, "scenarios"), exist_ok=True)
 landmarks = rng.uniform(-15, 15, size=(30, 2))
 angles = np.linspace(0, 2 * math.pi, 60)
 with open(os.path.join(HERE, best["scenario"]), "w", encoding="utf-8") as f:
-    f.write("arbor-scenario 1\n# synthetic fixture: truth only (the analysis reads step/truth/landmark lines)\n")
+    f.write("arbor-scenario 2\n# synthetic fixture: truth only (the analysis reads step/truth/landmark lines)\n")
     for i, (x, y) in enumerate(landmarks):
         f.write(f"landmark {i} {x:.3f} {y:.3f}\n")
     for i, a in enumerate(angles):
