@@ -43,6 +43,9 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--solver", *solver, "Sparse linear solver: sparse-normal-cholesky or sparse-schur")
       ->check(CLI::IsMember({"sparse-schur", "sparse-normal-cholesky"}))
       ->capture_default_str();
+  cmd->add_flag("--pose-at-truth-steps", config->options.pose_at_truth_steps,
+                "Also keep a pose at every step with ground truth (default: one pose per scan, the steps between "
+                "filled in from the controls for the evaluation)");
   cmd->add_flag("--schur-landmarks-first", config->options.schur_landmarks_first,
                 "With sparse-schur: eliminate exactly the landmarks (else Ceres chooses the eliminated set)");
   cmd->add_option("--warm-start", config->options.warm_start_poses,

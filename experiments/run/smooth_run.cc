@@ -48,6 +48,35 @@ Json summary_json(const SmootherSummary& s) {
           {"pose_marginals", s.pose_marginals}, {"marginals_time_s", s.marginals_time_s}};
 }
 
+// The smoothed poses (one per scan) with the steps between them filled in: the controls composed forward from
+// the earlier pose, and the mismatch at the later one spread linearly in time, so the evaluation at Vicon or
+// GPS times follows the path the controls describe rather than a straight line between scans.
+std::vector<TimedPose> densify_trajectory(const Scenario& scenario, const std::vector<SmoothedPose>& poses) {
+  std::vector<TimedPose> out;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const SmoothedPose& b = poses[i];
+    const bool chained = i > 0 && b.step >= 0 && b.step < static_cast<int>(scenario.steps.size()) && poses[i - 1].step < b.step;
+    if (chained) {
+      const SmoothedPose& a = poses[i - 1];
+      std::vector<TimedPose> between;
+      Pose2 x = a.pose;
+      for (int k = a.step + 1; k <= b.step; ++k) {
+        x = scenario.motion.apply(x, scenario.steps[k].control);
+        if (k < b.step) between.push_back({scenario.steps[k].time_s, x});
+      }
+      const Vec3 mismatch = pose_error(b.pose, x);
+      const double span = b.time_s - a.time_s;
+      for (TimedPose& p : between) {
+        const double f = span > 0.0 ? (p.time_s - a.time_s) / span : 1.0;
+        p.pose = Pose2::from_vector(p.pose.vector() + f * mismatch);
+        out.push_back(p);
+      }
+    }
+    out.push_back({b.time_s, b.pose});
+  }
+  return out;
+}
+
 }  // namespace
 
 SmootherAssociations read_association_decisions(const std::string& dir, const Scenario& scenario) {
@@ -121,7 +150,9 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
   const SmootherResult& sm = out.smoother;
 
   std::vector<TimedPose> trajectory;
-  for (const SmoothedPose& p : sm.poses) trajectory.push_back({p.time_s, p.pose});
+  if (config.isam_path.empty()) trajectory = densify_trajectory(scenario, sm.poses);
+  else
+    for (const SmoothedPose& p : sm.poses) trajectory.push_back({p.time_s, p.pose});
   std::vector<Landmark> map;
   for (const SmoothedLandmark& l : sm.landmarks) {
     Landmark lm;

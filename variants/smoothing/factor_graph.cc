@@ -101,7 +101,7 @@ FactorGraph build_factor_graph(const Scenario& scenario, const SmootherAssociati
     const ScenarioStep& step = scenario.steps[k];
     motion.predict(&rel, &P, step.control, step.time_s - previous_time_s);
     previous_time_s = step.time_s;
-    const bool keep = step.has_scan || !step.measurements.empty() || step.truth_pose.has_value() ||
+    const bool keep = step.has_scan || !step.measurements.empty() || (options.pose_at_truth_steps && step.truth_pose) ||
                       k + 1 == scenario.steps.size();
     if (!keep) continue;
     BetweenFactor between;

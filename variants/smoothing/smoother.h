@@ -27,6 +27,11 @@ bool from_string(std::string_view name, SmootherLoss* loss);
 bool from_string(std::string_view name, SmootherLinearSolver* solver);
 
 struct SmootherOptions {
+  // Poses: one per scan (and the last step), with the controls between composed into one motion factor.
+  // With pose_at_truth_steps, also one at every step with a ground-truth pose (UTIAS: 50,000 Vicon-time
+  // poses instead of 1,000 scans, and minutes instead of seconds); the evaluation does not need it, since the
+  // trajectory is filled in between scans from the controls (densify_trajectory).
+  bool pose_at_truth_steps = false;
   // Robust loss on the landmark observations only (a wrong association is an outlier there; odometry has
   // none). scale: the residual, in standard deviations, where the loss leaves the quadratic.
   SmootherLoss loss = SmootherLoss::kNone;
