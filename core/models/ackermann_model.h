@@ -54,10 +54,14 @@ inline Pose2 ackermann_apply(const Pose2& x, const Vec3& u, const AckermannVehic
   return apply_twist(x, ackermann_twist(u, car), u[2], J_pose);
 }
 
-inline Mat3 ackermann_process_noise(const Pose2& x, const Vec3& u, const AckermannVehicle& car, const AckermannNoise& n) {
+inline BodyProcessNoise ackermann_body_noise(const Vec3& u, const AckermannVehicle& car, const AckermannNoise& n) {
   Mat32 B;
   const Twist xi = ackermann_twist(u, car, &B);
-  return twist_process_noise(x.theta, xi, u[2], B, Vec2(n.q_v, n.q_steer).asDiagonal());
+  return {twist_body_noise(xi, u[2], B, Vec2(n.q_v, n.q_steer).asDiagonal()), 0.0};
+}
+
+inline Mat3 ackermann_process_noise(const Pose2& x, const Vec3& u, const AckermannVehicle& car, const AckermannNoise& n) {
+  return ackermann_body_noise(u, car, n).at(x.theta);
 }
 
 }  // namespace arbor

@@ -38,18 +38,21 @@ struct MotionModel {
   // Covariance that the control adds to an exact start pose x over its interval, from the continuous-time
   // noise (core/models/twist_motion.h). dt is the step's duration: the velocity and Ackermann controls carry
   // their own (u[2]); the odometry reading does not.
-  Mat3 process_noise(const Pose2& x, const Vec3& u, double dt) const {
+  Mat3 process_noise(const Pose2& x, const Vec3& u, double dt) const { return body_noise(u, dt).at(x.theta); }
+  // The same in the start pose's frame: it does not depend on the pose, so it can be shared by all particles.
+  BodyProcessNoise body_noise(const Vec3& u, double dt) const {
     switch (kind) {
-      case MotionModelKind::kOdometry: return odometry_process_noise(x, u, dt, odometry);
-      case MotionModelKind::kVelocity: return velocity_process_noise(x, u, velocity);
-      case MotionModelKind::kAckermann: return ackermann_process_noise(x, u, vehicle, ackermann);
+      case MotionModelKind::kOdometry: return odometry_body_noise(u, dt, odometry);
+      case MotionModelKind::kVelocity: return velocity_body_noise(u, velocity);
+      case MotionModelKind::kAckermann: return ackermann_body_noise(u, vehicle, ackermann);
     }
-    return Mat3::Zero();
+    return {};
   }
   // EKF prediction through one control (Probabilistic Robotics Table 3.3, line 3): x <- g(x, u) and
   // P <- G_x P G_x^T + Q_d.
-  void predict(Pose2* x, Mat3* P, const Vec3& u, double dt) const {
-    const Mat3 Q = process_noise(*x, u, dt);
+  void predict(Pose2* x, Mat3* P, const Vec3& u, double dt) const { predict(x, P, u, body_noise(u, dt)); }
+  void predict(Pose2* x, Mat3* P, const Vec3& u, const BodyProcessNoise& noise) const {
+    const Mat3 Q = noise.at(x->theta);
     Mat3 G = Mat3::Identity();
     *x = apply(*x, u, &G);
     *P = G * *P * G.transpose() + Q;

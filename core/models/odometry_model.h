@@ -39,11 +39,16 @@ inline Pose2 odometry_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J
 
 // Covariance the reading adds to the pose (world frame), dt its duration (a floor keeps dt = 0 finite: the
 // motion-proportional terms are per distance and per radian, so they stay right as dt shrinks).
-inline Mat3 odometry_process_noise(const Pose2& x, const Vec3& u, double dt, const OdometryNoise& n) {
+inline BodyProcessNoise odometry_body_noise(const Vec3& u, double dt, const OdometryNoise& n) {
   dt = std::max(dt, 1e-9);
-  double offset = 0.0;
-  const Twist xi = odometry_twist(u, dt, &offset);
-  return twist_process_noise(x.theta + offset, xi, dt, forward_turn_noise_map(), n.psd(xi.v_x, xi.omega));
+  BodyProcessNoise q;
+  const Twist xi = odometry_twist(u, dt, &q.heading_offset);
+  q.body = twist_body_noise(xi, dt, forward_turn_noise_map(), n.psd(xi.v_x, xi.omega));
+  return q;
+}
+
+inline Mat3 odometry_process_noise(const Pose2& x, const Vec3& u, double dt, const OdometryNoise& n) {
+  return odometry_body_noise(u, dt, n).at(x.theta);
 }
 
 // The odometry control that takes pose a to pose b (inverse of odometry_apply), used by the simulator.

@@ -47,12 +47,28 @@ inline Pose2 apply_twist(const Pose2& x, const Twist& xi, double T, Mat3* J_pose
   return {x.x + dx, x.y + dy, wrap_angle(x.theta + xi.omega * T)};
 }
 
-// Q_d above, in the world frame of a start heading theta0, by Simpson's rule. The integrand is a
+// Q_d above, in the start frame, by Simpson's rule. The integrand is a
 // trigonometric polynomial in omega s; with |omega h| <= 0.1 per panel the quadrature error is far below
 // 1e-6 relative, and straight motion (a cubic in s) is integrated exactly.
 inline constexpr double kFloorDensity = 1e-10;  // m^2/s and rad^2/s
 
-inline Mat3 twist_process_noise(double theta0, const Twist& xi, double T, const Mat32& B, const Mat2& Q_c) {
+// The covariance an interval adds, in the frame of its start pose turned by heading_offset. It does not depend
+// on the start pose, so the engine computes it once per control and turns it into each particle's frame.
+struct BodyProcessNoise {
+  Mat3 body = Mat3::Zero();
+  double heading_offset = 0.0;
+
+  // In the world frame of a start pose with this heading.
+  Mat3 at(double theta) const {
+    const double a = theta + heading_offset, c = std::cos(a), s = std::sin(a);
+    Mat3 R = Mat3::Identity();
+    R.topLeftCorner<2, 2>() << c, -s, s, c;
+    const Mat3 Q = R * body * R.transpose();
+    return 0.5 * (Q + Q.transpose());
+  }
+};
+
+inline Mat3 twist_body_noise(const Twist& xi, double T, const Mat32& B, const Mat2& Q_c) {
   if (!(T > 0.0)) return Mat3::Zero();  // no time, no noise (an odometry reading clamps its dt above 0)
   const int panels = 2 * std::clamp(static_cast<int>(std::ceil(std::abs(xi.omega * T) / 0.2)), 2, 64);
   const double h = T / panels;
@@ -74,10 +90,12 @@ inline Mat3 twist_process_noise(double theta0, const Twist& xi, double T, const 
   // A floor density on every axis (lateral slip, say), so that a standing robot's prediction stays positive
   // definite; as a density it adds up over pieces like the rest.
   body.diagonal().array() += kFloorDensity * T;
-  Mat3 R = Mat3::Identity();
-  R.topLeftCorner<2, 2>() << std::cos(theta0), -std::sin(theta0), std::sin(theta0), std::cos(theta0);
-  const Mat3 Q = R * body * R.transpose();
-  return 0.5 * (Q + Q.transpose());
+  return body;
+}
+
+// Q_d in the world frame of a start heading theta0.
+inline Mat3 twist_process_noise(double theta0, const Twist& xi, double T, const Mat32& B, const Mat2& Q_c) {
+  return BodyProcessNoise{twist_body_noise(xi, T, B, Q_c), 0.0}.at(theta0);
 }
 
 // White noise on the forward speed and the turn rate of a twist (velocity and odometry models):

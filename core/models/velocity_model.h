@@ -46,8 +46,12 @@ inline Pose2 velocity_apply(const Pose2& x, const Vec3& u, Mat3* J_pose, Mat3* J
 }
 
 // Covariance the control adds to the pose over its dt = u[2] (world frame).
+inline BodyProcessNoise velocity_body_noise(const Vec3& u, const VelocityNoise& n) {
+  return {twist_body_noise({u[0], 0.0, u[1]}, u[2], forward_turn_noise_map(), n.psd(u[0], u[1])), 0.0};
+}
+
 inline Mat3 velocity_process_noise(const Pose2& x, const Vec3& u, const VelocityNoise& n) {
-  return twist_process_noise(x.theta, {u[0], 0.0, u[1]}, u[2], forward_turn_noise_map(), n.psd(u[0], u[1]));
+  return velocity_body_noise(u, n).at(x.theta);
 }
 
 }  // namespace arbor

@@ -27,12 +27,13 @@ struct BeaconExtraction {
 std::vector<Measurement> extract_beacons(const std::vector<double>& ranges_m, const std::vector<double>& intensity,
                                          const BeaconExtraction& options = {});
 
-// Noise defaults measured by estimate_car_park_noise on the shipped data (docs/datasets.md).
+// Noise defaults measured by estimate_car_park_noise on the shipped data (docs/datasets.md): standard
+// deviations within 5 sigma and continuous-time motion densities over 2 s windows of the GPS track.
 struct CarParkNoiseDefaults {
-  static constexpr double kSigmaRangeM = 0.017;
-  static constexpr double kSigmaBearingRad = 0.0044;
-  static constexpr double kQvM2ps = 0.17 * 0.17 * 0.025;      // wheel-speed density [m^2/s]
-  static constexpr double kQsteerRad2s = 0.13 * 0.13 * 0.025;  // steering density [rad^2 s]
+  static constexpr double kSigmaRangeM = 0.0196;
+  static constexpr double kSigmaBearingRad = 0.0058;
+  static constexpr double kQvM2ps = 1.22e-3;      // wheel-speed density [m^2/s]
+  static constexpr double kQsteerRad2s = 9.1e-4;  // steering density [rad^2 s]
 };
 
 Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const BeaconExtraction& extraction = {});

@@ -62,7 +62,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
       mean_trajectory.push_back({step.time_s, estimate.mean});
       if (step.truth_pose) {
         const double nees = pose_nees(estimate.mean, estimate.covariance, *step.truth_pose);
-        if (step.has_scan) out.nees.push_back(nees);
+        // At an exactly known pose (the start, with no initial uncertainty) the NEES is 0/0, not a figure.
+        if (step.has_scan && estimate.covariance.trace() > 1e-9) out.nees.push_back(nees);
         nees_text = fmt::format("{}", nees);
       }
     }

@@ -227,7 +227,8 @@ std::vector<std::string> default_metrics(bool with_smoother) {
                              "assoc_recall",       "assoc_f1",        "landmarks",      "steps",
                              "step_time_median_s", "step_time_p95_s", "wall_time_s",    "peak_rss_bytes",
                              "ate_mean_rmse_m",    "true_landmarks",  "n_eff_mean",     "hypotheses",
-                             "compatibility_tests", "map_bytes_per_particle"};
+                             "compatibility_tests", "map_bytes_per_particle", "nees_median",
+                             "nees_in_band_fraction", "rejected_measurements"};
   if (with_smoother) m.insert(m.end(), {"solve_time_s", "iterations", "initial_cost", "final_cost", "termination"});
   return m;
 }
