@@ -15,14 +15,6 @@
 namespace arbor {
 namespace {
 
-Scenario multi_rate_world(std::uint64_t seed, int scans, int controls_per_scan) {
-  SimulationOptions o;
-  o.seed = o.world.seed = seed;
-  o.steps = scans;
-  o.controls_per_scan = controls_per_scan;
-  return simulate(o);
-}
-
 RunConfig known(FilterVersion version, int particles, std::uint64_t seed, MotionSampling sampling) {
   RunConfig c;
   c.options.version = version;
@@ -34,7 +26,7 @@ RunConfig known(FilterVersion version, int particles, std::uint64_t seed, Motion
 }
 
 TEST(MultiRate, SimulatorReadsTheOdometerKTimesPerScan) {
-  const Scenario s = multi_rate_world(1, 21, 10);
+  const Scenario s = testing::simulated_world(1, 21, 0.0, 10);
   ASSERT_EQ(s.steps.size(), 1u + 20u * 10u);
   int scans = 0;
   for (const ScenarioStep& step : s.steps) scans += step.has_scan;
@@ -45,7 +37,7 @@ TEST(MultiRate, SimulatorReadsTheOdometerKTimesPerScan) {
 }
 
 TEST(MultiRate, AccumulatedCovarianceIsTheChainOfPredictions) {
-  const Scenario s = multi_rate_world(2, 5, 10);
+  const Scenario s = testing::simulated_world(2, 5, 0.0, 10);
   FastSlamOptions options;
   options.particles = 8;
   options.threads = 1;
@@ -77,7 +69,7 @@ TEST(MultiRate, AccumulatedCovarianceIsTheChainOfPredictions) {
 }
 
 TEST(MultiRate, BitIdenticalWithOneAndTwoThreads) {
-  const Scenario s = multi_rate_world(3, 40, 10);
+  const Scenario s = testing::simulated_world(3, 40, 0.0, 10);
   for (auto version : {FilterVersion::kFastSlam1, FilterVersion::kFastSlam2}) {
     std::string files[2];
     for (int t = 1; t <= 2; ++t) {
@@ -98,7 +90,7 @@ TEST(MultiRate, BitIdenticalWithOneAndTwoThreads) {
 // per-control 0.07-0.22 m, better on every seed.
 TEST(MultiRate, PerScanSamplingBeatsPerControl) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const Scenario s = multi_rate_world(seed, 150, 10);
+    const Scenario s = testing::simulated_world(seed, 150, 0.0, 10);
     const RunOutput scan = run_fastslam(s, known(FilterVersion::kFastSlam2, 10, seed, MotionSampling::kPerScan));
     const RunOutput control = run_fastslam(s, known(FilterVersion::kFastSlam2, 10, seed, MotionSampling::kPerControl));
     EXPECT_LT(scan.result["ate_rmse_m"].get<double>(), control.result["ate_rmse_m"].get<double>()) << "seed " << seed;
@@ -114,7 +106,7 @@ TEST(MultiRate, PerScanSamplingIsConsistentOnAShortHorizonOver30Seeds) {
   for (auto sampling : {MotionSampling::kPerScan, MotionSampling::kPerControl}) {
     std::vector<double> sum(scans, 0.0);
     for (int seed = 1; seed <= seeds; ++seed) {
-      const RunOutput out = run_fastslam(multi_rate_world(seed, scans, 10), known(FilterVersion::kFastSlam2, 100, seed, sampling));
+      const RunOutput out = run_fastslam(testing::simulated_world(seed, scans, 0.0, 10), known(FilterVersion::kFastSlam2, 100, seed, sampling));
       ASSERT_EQ(out.nees.size(), static_cast<std::size_t>(scans - 1)) << "one NEES per scan after the exact start";
       for (int k = 1; k < scans; ++k) sum[k] += out.nees[k - 1];
     }
@@ -128,7 +120,7 @@ TEST(MultiRate, PerScanSamplingIsConsistentOnAShortHorizonOver30Seeds) {
 // An outlier 20 sigma off in range, under known association: the gate rejects it and counts it, and the run
 // is bit-identical to one where that measurement is labelled clutter (which known association never fuses).
 TEST(KnownGate, AnOutlierIsRejectedCountedAndTreatedAsClutter) {
-  Scenario outlier = multi_rate_world(5, 40, 1);
+  Scenario outlier = testing::simulated_world(5, 40, 0.0, 1);
   ScenarioStep& step = outlier.steps[30];
   ASSERT_FALSE(step.measurements.empty());
   Measurement& m = step.measurements.front();

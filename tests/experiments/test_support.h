@@ -1,4 +1,5 @@
-// Helpers shared by the experiment-level tests: scratch directories, files, running the arbor binary.
+// Helpers shared by the experiment-level tests: simulated worlds, scratch directories, files, running the
+// arbor binary.
 #ifndef ARBOR_TESTS_EXPERIMENTS_TEST_SUPPORT_H_
 #define ARBOR_TESTS_EXPERIMENTS_TEST_SUPPORT_H_
 
@@ -8,7 +9,19 @@
 #include <sstream>
 #include <string>
 
+#include "experiments/sim/simulator.h"
+
 namespace arbor::testing {
+
+// The default simulated world (experiments/sim/simulator.h), world and noise from one seed.
+inline Scenario simulated_world(std::uint64_t seed, int scans, double clutter = 0.0, int controls_per_scan = 1) {
+  SimulationOptions o;
+  o.seed = o.world.seed = seed;
+  o.steps = scans;
+  o.clutter_rate = clutter;
+  o.controls_per_scan = controls_per_scan;
+  return simulate(o);
+}
 
 // A fresh directory under the system temp dir, named after the test.
 inline std::string scratch_dir(const std::string& name) {

@@ -11,14 +11,6 @@
 namespace arbor {
 namespace {
 
-Scenario cluttered_world(std::uint64_t seed, int steps, double clutter) {
-  SimulationOptions o;
-  o.seed = o.world.seed = seed;
-  o.steps = steps;
-  o.clutter_rate = clutter;
-  return simulate(o);
-}
-
 RunOutput run(const Scenario& scenario, const std::string& map, const std::string& assoc, std::uint64_t seed,
               int threads, int particles = 100, const std::string& out_dir = "") {
   RunConfig c;
@@ -35,7 +27,7 @@ RunOutput run(const Scenario& scenario, const std::string& map, const std::strin
 // Measured at commit time on seeds 1-3 (300 steps, 2 clutter per scan, 100 particles): see kMeasured below.
 TEST(UnknownAssociation, Fastslam2WithJcbbMatchesKnownAssociationOnAClutteredWorld) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const Scenario scenario = cluttered_world(seed, 300, 2.0);
+    const Scenario scenario = testing::simulated_world(seed, 300, 2.0);
     const RunOutput known = run(scenario, "tree", "known", seed, 0);
     const RunOutput jcbb = run(scenario, "tree", "jcbb", seed, 0);
     const double f1 = jcbb.result["assoc_f1"].get<double>();
@@ -54,7 +46,7 @@ TEST(UnknownAssociation, Fastslam2WithJcbbMatchesKnownAssociationOnAClutteredWor
 }
 
 TEST(UnknownAssociation, BitIdenticalAcrossThreadCountsAndMapBackends) {
-  const Scenario scenario = cluttered_world(5, 80, 1.0);
+  const Scenario scenario = testing::simulated_world(5, 80, 1.0);
   for (const std::string assoc : {"nn", "jcbb", "locality"}) {
     std::string reference;
     for (const std::string& map : map_backend_names()) {
