@@ -20,15 +20,7 @@ cd "$(dirname "$0")/../.."
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p "$out/scenarios"
 
-once() {
-  local dir=$1
-  shift
-  [ -f "$dir/result.json" ] && return 0
-  rm -rf "$dir.partial"
-  "$arbor" "$@" --quiet --out "$dir.partial" > /dev/null
-  rm -f "$dir.partial/trajectory_mean.tum" "$dir.partial/associations.csv"
-  mv "$dir.partial" "$dir"
-}
+source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
 
 for k in $ks; do
   for s in $seeds; do

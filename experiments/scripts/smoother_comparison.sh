@@ -17,17 +17,7 @@ cd "$(dirname "$0")/../.."  # the converters default to the data shipped in data
 scenarios=out/scenarios     # shared with scripts/main.sh, which converts Victoria Park the same way
 mkdir -p "$out" "$scenarios"
 
-# Runs one command into DIR unless DIR/result.json exists; keeps result.json, trajectory.tum and
-# associations.csv (for the smoother runs that follow) and drops the per-step files.
-once() {
-  local dir=$1
-  shift
-  [ -f "$dir/result.json" ] && return 0
-  rm -rf "$dir.partial"
-  "$arbor" "$@" --quiet --out "$dir.partial" > /dev/null
-  rm -f "$dir.partial/steps.csv" "$dir.partial/trajectory_mean.tum"
-  mv "$dir.partial" "$dir"
-}
+source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
 
 # FastSLAM runs of FILTER x ASSOC x PARTICLES x SEEDS on SCENARIO into OUT/DATASET.
 fastslam() {
