@@ -42,12 +42,12 @@ RunErrors run_known_association(const Scenario& s, int particles, std::uint64_t 
 TEST(RealData, UtiasRobot1WithKnownAssociationAteFarBelowDeadReckoning) {
   LoadReport report;
   const Scenario s = load_utias_mrclam(std::string(ARBOR_SOURCE_DIR) + "/data/utias_mrclam/MRCLAM_Dataset6", {}, &report);
-  // Measured (Release, 10 particles, seeds 1-5, the whole 760 s): filter 0.37-0.93 m, dead reckoning 2.62 m,
-  // so the worst seed is at 0.35 x dead reckoning; the assertion leaves room for other thread counts and
-  // compilers but still fails for a filter that ignores the measurements.
-  const RunErrors e = run_known_association(s, 10, 1);
+  // Measured (Release, 100 particles, the whole 760 s, the weighted mean at every Vicon time): seed 1
+  // 0.44 m, seeds 1-3 0.44-0.69 m; dead reckoning 2.62 m. Before prediction between scans and the calibrated
+  // noise the same run gave 1.13 m (seeds 1-3: 0.78-1.13 m), so the floor of 0.6 m fails for that engine.
+  const RunErrors e = run_known_association(s, 100, 1);
   EXPECT_GT(e.dead_reckoning_rmse_m, 2.0);
-  EXPECT_LT(e.filter_rmse_m, 0.5 * e.dead_reckoning_rmse_m);
+  EXPECT_LT(e.filter_rmse_m, 0.6);
   EXPECT_EQ(e.landmarks, 15u);
 }
 
