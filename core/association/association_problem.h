@@ -24,6 +24,7 @@ inline constexpr LandmarkId kSpurious = -2;     // clutter: neither paired nor u
 struct AssociationMeasurement {
   Vec2 z;  // (range [m], bearing [rad]) in the robot frame
   float signature = std::numeric_limits<float>::quiet_NaN();
+  std::int32_t truth_id = -2;  // the scenario's ground-truth id (-1 clutter, -2 unknown); only `known` reads it
 };
 
 // A landmark that may have produced some of the measurements, with everything its prediction needs.
@@ -36,6 +37,7 @@ struct AssociationCandidate {
   Mat2 position_cov;    // Sigma_j
   float signature = std::numeric_limits<float>::quiet_NaN();
   LocalitySet locality;
+  std::int32_t truth_label = -1;  // Landmark::truth_label; only `known` reads it
 };
 
 struct AssociationProblem {
@@ -64,6 +66,7 @@ struct AssociationStats {
   // True when a tree search stopped at AssociationOptions::max_hypotheses: the answer is the best found so
   // far (still jointly compatible), not necessarily the optimum.
   bool budget_exhausted = false;
+  std::int64_t rejected = 0;  // known association: pairings its gate refused
 };
 
 struct AssociationResult {
@@ -77,13 +80,16 @@ struct AssociationOptions {
   double new_landmark_probability = 0.999;  // outside this gate of every candidate a measurement starts a landmark
   int locality_capacity = LocalitySet::kCapacity;
   std::int64_t max_hypotheses = 1'000'000;  // search budget for the tree searches
+  // Known association trusts the ids, not the measurements: a pairing whose innovation lies outside this
+  // chi-square gate (2 dof, pose and landmark uncertainty included) is refused and counted. 1: no gate.
+  double known_gate_probability = 0.999;
 };
 
 // The AssociationStrategy concept. Strategies are stateless apart from their options; solve() is called
 // concurrently from many particles, each thread with its own Scratch.
 //   A a(options);  typename A::Scratch s;  a.solve(problem, s, result);  A::kName
-// Known association (ground-truth ids) is the strategy with kUsesGroundTruth = true: the engine pairs by the
-// scenario's ids and never calls its solve().
+// Known association (ground-truth ids) is the strategy with kUsesGroundTruth = true: it pairs by the
+// measurements' truth ids and the candidates' truth labels, and the engine does not score its decisions.
 template <class A>
 concept AssociationStrategy = std::constructible_from<A, const AssociationOptions&> &&
     std::default_initializable<typename A::Scratch> &&

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -43,8 +42,7 @@ struct Particle {
   Map map;
   PoseHistory history;
   DecisionHistory decisions;    // only scans with measurements; for the smoother (`arbor smooth --associations`)
-  LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end); with
-                                // known association ids come from the engine-wide truth table instead
+  LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end)
   AssociationCounts counts;     // this lineage's decisions scored against ground truth (metrics only)
   std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
 };
@@ -78,8 +76,6 @@ class FastSlam {
     log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
                                std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
     prune_ = !Assoc::kUsesGroundTruth || options.prune_with_known_association;
-    known_gate_ = options.known_gate_probability < 1.0 ? chi_square_quantile(options.known_gate_probability, 2)
-                                                       : std::numeric_limits<double>::infinity();
     const double nu = options.student_dof;
     student_log_norm_ = std::lgamma(0.5 * (nu + 2.0)) - std::lgamma(0.5 * nu) - std::log(nu * kPi);
     last_time_s_ = scenario.start_time_s;
@@ -103,7 +99,6 @@ class FastSlam {
     step_noise_ = motion_.body_noise(step.control, step.time_s - last_time_s_);  // shared by every particle
     last_time_s_ = step.time_s;
     if (step_index_ > 0 && last_n_eff_ < options_.resample_threshold * options_.particles) resample();
-    if (Assoc::kUsesGroundTruth) assign_known_ids(step);
     // A step between scans only predicts (a few hundred nanoseconds a particle): chunks of 512 keep the
     // scheduling overhead from costing more than the work (61,660 such steps on Victoria Park).
     const bool predict_only = !step.has_scan && options_.motion_sampling == MotionSampling::kPerScan;
@@ -134,15 +129,11 @@ class FastSlam {
   // landmark's truth_label is the ground-truth id that refers to it.
   void set_prior_map(const Map& map) {
     LandmarkId next = 0;
-    map.for_each([&](const Landmark& lm) {
-      next = std::max(next, lm.id + 1);
-      if (Assoc::kUsesGroundTruth && lm.truth_label >= 0) known_ids_.emplace(lm.truth_label, lm.id);
-    });
+    map.for_each([&](const Landmark& lm) { next = std::max(next, lm.id + 1); });
     for (auto& p : particles_) {
       p.map = map;
       p.next_id = next;
     }
-    next_known_id_ = std::max(next_known_id_, next);
   }
 
   const StepStats& last_step_stats() const { return stats_; }
@@ -203,13 +194,6 @@ class FastSlam {
     std::vector<int> touched_of;               // per measurement: index into touched, or -1
   };
 
-  // Known association: every particle creates a landmark for a true id at the same step in the same order,
-  // so one table (true id -> landmark id) serves them all.
-  void assign_known_ids(const ScenarioStep& step) {
-    for (const Measurement& m : step.measurements)
-      if (m.truth_id >= 0 && !known_ids_.count(m.truth_id)) known_ids_.emplace(m.truth_id, next_known_id_++);
-  }
-
   void resample() {
     RandomStream rng(options_.seed, step_index_, 0, RandomPurpose::kResample);
     const std::vector<int> parents = systematic_resample(weights_, rng.uniform());
@@ -225,14 +209,23 @@ class FastSlam {
     stats_.resampled = true;
   }
 
+  // How far beyond the sensor's view a pose drawn from N(pose, P) could see: three standard deviations of
+  // the position (range) and of the heading (bearing). Zero for a sampled pose.
+  struct ViewMargin {
+    double range_m = 0.0, bearing_rad = 0.0;
+  };
+  static ViewMargin uncertainty_margin(const Mat3& P) {
+    return {3.0 * std::sqrt(std::max({P(0, 0), P(1, 1), 0.0})), 3.0 * std::sqrt(std::max(P(2, 2), 0.0))};
+  }
+
   // Where the sensor could see: the landmarks in this box are the association candidates.
-  Box2 query_box(const Pose2& pose) const {
-    const double reach = sensor_.max_range_m + options_.candidate_range_margin_m;
+  Box2 query_box(const Pose2& pose, double extra_reach_m = 0.0) const {
+    const double reach = sensor_.max_range_m + options_.candidate_range_margin_m + extra_reach_m;
     return {pose.position() - Vec2(reach, reach), pose.position() + Vec2(reach, reach)};
   }
-  bool in_candidate_view(const Vec2& z) const {
-    return z.x() <= sensor_.max_range_m + options_.candidate_range_margin_m &&
-           std::abs(z.y()) <= 0.5 * sensor_.fov_rad + options_.candidate_bearing_margin_rad;
+  bool in_candidate_view(const Vec2& z, const ViewMargin& margin) const {
+    return z.x() <= sensor_.max_range_m + options_.candidate_range_margin_m + margin.range_m &&
+           std::abs(z.y()) <= 0.5 * sensor_.fov_rad + options_.candidate_bearing_margin_rad + margin.bearing_rad;
   }
   bool in_evidence_view(const Vec2& z) const {
     return z.x() <= sensor_.max_range_m - options_.evidence_range_margin_m &&
@@ -394,7 +387,7 @@ class FastSlam {
       if (s.decision[k] != kNewLandmark) continue;
       log_weight += log_likelihood_unpaired_;
       Landmark lm;
-      lm.id = Assoc::kUsesGroundTruth ? known_ids_.at(measurements[k].truth_id) : p.next_id++;
+      lm.id = p.next_id++;
       lm.mean = range_bearing_inverse(p.pose, measurements[k].z());
       lm.cov = range_bearing_initial_covariance(p.pose, measurements[k].z(), R_);
       lm.log_odds = static_cast<float>(options_.log_odds_initial);
@@ -425,13 +418,14 @@ class FastSlam {
     p.decisions.push(std::move(applied));
   }
 
-  // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from pose).
+  // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from a pose
+  // drawn from N(pose, P): the view is widened by three standard deviations of P).
   void gather_candidates(const Particle<Map>& p, const Pose2& pose, const Mat3& P, const ScenarioStep& step, Scratch& s) {
-    gather_nearby(p, pose, s);
-    if (Assoc::kUsesGroundTruth) return;
+    const ViewMargin margin = uncertainty_margin(P);
+    gather_nearby(p, pose, s, margin.range_m);
     AssociationProblem& problem = s.problem;
     problem.measurements.clear();
-    for (const Measurement& m : step.measurements) problem.measurements.push_back({m.z(), m.signature});
+    for (const Measurement& m : step.measurements) problem.measurements.push_back({m.z(), m.signature, m.truth_id});
     problem.candidates.clear();
     s.candidate_of.clear();
     problem.R = R_;
@@ -442,8 +436,9 @@ class FastSlam {
       AssociationCandidate c;
       Mat2 H_m;
       c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
-      if (!in_candidate_view(c.z_hat)) continue;
+      if (!in_candidate_view(c.z_hat, margin)) continue;
       c.id = lm.id;
+      c.truth_label = lm.truth_label;
       c.S = H_m * lm.cov * H_m.transpose() + R_;
       c.position = lm.mean;
       c.position_cov = lm.cov;
@@ -455,14 +450,14 @@ class FastSlam {
   }
 
   // s.nearby: every landmark in the query box around pose, ascending id (the map concept's visit order).
-  void gather_nearby(const Particle<Map>& p, const Pose2& pose, Scratch& s) const {
+  void gather_nearby(const Particle<Map>& p, const Pose2& pose, Scratch& s, double extra_reach_m = 0.0) const {
     s.nearby.clear();
-    p.map.visit_near(query_box(pose), [&](const Landmark& lm) { s.nearby.push_back(lm); });
+    p.map.visit_near(query_box(pose, extra_reach_m), [&](const Landmark& lm) { s.nearby.push_back(lm); });
   }
 
   // The landmark with this id as the map holds it now: from s.nearby when it is there (a binary search
-  // instead of a second descent of the map), else from the map (known association can pair a landmark
-  // outside the query box). Valid until the map is written at the end of the particle's update.
+  // instead of a second descent of the map), else from the map. Valid until the map is written at the end
+  // of the particle's update.
   static const Landmark* find_landmark(const Particle<Map>& p, const Scratch& s, LandmarkId id) {
     const auto it = std::lower_bound(s.nearby.begin(), s.nearby.end(), id,
                                      [](const Landmark& lm, LandmarkId v) { return lm.id < v; });
@@ -472,37 +467,14 @@ class FastSlam {
   // One decision per measurement (landmark id, kNewLandmark or kSpurious), and the lineage's score.
   void decide(ParticleState& p, const ScenarioStep& step, Scratch& s) {
     const auto& measurements = step.measurements;
-    s.decision.assign(measurements.size(), kSpurious);
-    if constexpr (Assoc::kUsesGroundTruth) {
-      for (std::size_t k = 0; k < measurements.size(); ++k) {
-        if (measurements[k].truth_id < 0) continue;  // clutter is recognised as such
-        const LandmarkId id = known_ids_.at(measurements[k].truth_id);
-        const Landmark* lm = find_landmark(p, s, id);
-        if (!lm) s.decision[k] = kNewLandmark;
-        else if (within_known_gate(p, measurements[k], *lm)) s.decision[k] = id;
-        else ++p.rejected;  // stays kSpurious: an outlier of the sensor, not evidence about the landmark
-      }
-      return;
-    } else {
-      strategy_.solve(s.problem, s.strategy, s.result);
-      ARBOR_CHECK(s.result.pairing.size() == measurements.size(), "strategy {} returned {} decisions for {} measurements",
-                  Assoc::kName, s.result.pairing.size(), measurements.size());
-      s.decision = s.result.pairing;
-      p.step_hypotheses = s.result.stats.hypotheses;
-      p.step_tests = s.result.stats.tests;
-      score_decisions(p, measurements, s);
-    }
-  }
-
-  // Whether the measurement's innovation against the landmark its id names lies inside the known-association
-  // gate, with the landmark's and the pose's uncertainty (p.pose_covariance: zero after a FastSLAM 1.0 draw).
-  bool within_known_gate(const ParticleState& p, const Measurement& m, const Landmark& lm) const {
-    Mat2 H_m;
-    Mat23 H_x;
-    const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, &H_x);
-    const Mat2 S = H_x * p.pose_covariance * H_x.transpose() + H_m * lm.cov * H_m.transpose() + R_;
-    const Vec2 nu = range_bearing_innovation(m.z(), z_hat);
-    return nu.dot(S.ldlt().solve(nu)) <= known_gate_;
+    strategy_.solve(s.problem, s.strategy, s.result);
+    ARBOR_CHECK(s.result.pairing.size() == measurements.size(), "strategy {} returned {} decisions for {} measurements",
+                Assoc::kName, s.result.pairing.size(), measurements.size());
+    s.decision = s.result.pairing;
+    p.step_hypotheses = s.result.stats.hypotheses;
+    p.step_tests = s.result.stats.tests;
+    p.rejected += s.result.stats.rejected;
+    if constexpr (!Assoc::kUsesGroundTruth) score_decisions(p, measurements, s);  // known is right by definition
   }
 
   // Scores each decision against the scenario's ground truth, where it has any (metrics only).
@@ -547,7 +519,6 @@ class FastSlam {
   Mat2 R_;
   Assoc strategy_;
   double log_likelihood_unpaired_ = 0.0;
-  double known_gate_ = 0.0;          // chi-square(2) quantile of options_.known_gate_probability
   double student_log_norm_ = 0.0;    // log Gamma((nu+2)/2) - log Gamma(nu/2) - log(nu pi), 2-D Student-t
   double last_time_s_ = 0.0;
   BodyProcessNoise step_noise_;      // the step's control noise in the start frame, shared by every particle
@@ -556,8 +527,6 @@ class FastSlam {
   std::vector<ParticleState> particles_;
   std::vector<double> weights_;
   tbb::enumerable_thread_specific<Scratch> scratch_;
-  std::unordered_map<std::int32_t, LandmarkId> known_ids_;
-  LandmarkId next_known_id_ = 0;
   std::int64_t step_index_ = 0;
   double last_n_eff_ = 0.0;
   StepStats stats_;

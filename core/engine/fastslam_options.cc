@@ -48,8 +48,8 @@ std::string FastSlamOptions::validate() const {
   if (!(q > 0.0 && q < 1.0)) return fmt::format("new-landmark probability must lie in (0, 1) (got {})", q);
   if (!(log_odds_hit > 0.0 && log_odds_miss >= 0.0)) return "log-odds hit must be positive and miss non-negative";
   if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
-  if (!(known_gate_probability > 0.0 && known_gate_probability <= 1.0))
-    return fmt::format("known-association gate probability must lie in (0, 1] (got {})", known_gate_probability);
+  const double k = association.known_gate_probability;
+  if (!(k > 0.0 && k <= 1.0)) return fmt::format("known-association gate probability must lie in (0, 1] (got {})", k);
   return "";
 }
 

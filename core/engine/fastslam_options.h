@@ -39,10 +39,6 @@ struct FastSlamOptions {
   // scale its noise by (nu + d^2) / (nu + 2) (the EM weight of the t), so it pulls less.
   Likelihood likelihood = Likelihood::kGaussian;
   double student_dof = 4.0;
-  // Known association trusts the ids, not the measurements: a paired measurement whose innovation lies
-  // outside this chi-square gate (2 dof, pose and landmark uncertainty included) is rejected and counted.
-  // 1 disables the gate.
-  double known_gate_probability = 0.999;
 
   // Landmark existence evidence in log-odds (Montemerlo 2003 §4 uses the same counting idea): seen +hit,
   // predicted in view and missed -miss, clamped at max; below prune the landmark is dropped. Provisional

@@ -55,7 +55,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--student-dof", config->options.student_dof, "Degrees of freedom of the Student-t likelihood")
       ->check(CLI::Range(0.1, 1e6))
       ->capture_default_str();
-  cmd->add_option("--known-gate", config->options.known_gate_probability,
+  cmd->add_option("--known-gate", config->options.association.known_gate_probability,
                   "With --assoc known, reject (and count) a measurement outside this chi-square gate of the landmark "
                   "its id names; 1 disables the gate")
       ->check(CLI::Range(1e-6, 1.0))

@@ -97,7 +97,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
                  {"likelihood", std::string(to_string(config.options.likelihood))},
                  {"student_dof", config.options.student_dof},
-                 {"known_gate_probability", config.options.known_gate_probability}};
+                 {"known_gate_probability", config.options.association.known_gate_probability}};
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
   r.update(accuracy_fields(scenario, truth, best, map));

@@ -158,7 +158,7 @@ TEST(KnownGate, AnOutlierIsRejectedCountedAndTreatedAsClutter) {
   EXPECT_EQ(b.result["rejected_measurements"].get<int>(), 0);
   EXPECT_TRUE(files_a == files_b) << "the rejected outlier changed the estimate";
 
-  c.options.known_gate_probability = 1.0;  // no gate: the outlier is fused and moves the estimate
+  c.options.association.known_gate_probability = 1.0;  // no gate: the outlier is fused and moves the estimate
   c.out_dir = testing::scratch_dir("gate_off");
   run_fastslam(outlier, c);
   EXPECT_FALSE(testing::read_file(c.out_dir + "/map.csv") == map_b);

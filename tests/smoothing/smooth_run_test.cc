@@ -88,7 +88,7 @@ TEST(SmoothRun, AKnownAssociationRunsDecisionsAreTheTruthRenamed) {
   RunConfig run;
   run.options.particles = 20;
   run.options.threads = 1;
-  run.options.known_gate_probability = 1.0;  // no gate: every measurement with an id is paired, as the truth's
+  run.options.association.known_gate_probability = 1.0;  // no gate: every measurement with an id is paired, as the truth's
   run.out_dir = dir + "/fastslam";
   run_fastslam(s, run);
 
@@ -115,7 +115,6 @@ TEST(SmoothRun, NearestNeighbourDecisionsCoverEveryMeasurementAndSolve) {
   run.assoc = "nn";
   run.options.particles = 20;
   run.options.threads = 1;
-  run.options.known_gate_probability = 1.0;  // no gate: every measurement with an id is paired, as the truth's
   run.out_dir = dir + "/fastslam";
   run_fastslam(s, run);
 
