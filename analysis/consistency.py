@@ -36,8 +36,8 @@ def scan_nees(run_dir):
     if not os.path.exists(path):
         return None
     s = pd.read_csv(path)
-    # An exactly known pose (the start) has NEES 0/0, written as ~0: not a sample of the statistic.
-    s = s[s["nees"].notna() & (s["nees"] > 1e-6)]
+    # The start is known exactly: its NEES is 0/0 (written as ~0), not a sample of the statistic.
+    s = s[s["nees"].notna() & (s["time_s"] > s["time_s"].min())]
     return s[["step", "time_s", "nees"]].reset_index(drop=True)
 
 
@@ -50,8 +50,9 @@ def make(df, out_dir, results_path=None):
     _, df = ar.drop_identical_map_backends(df, keys + ["map"], ["seed", "scenario"])
     rows, curves = [], []
     for name, g in df.groupby(keys, dropna=False):
-        label = ", ".join(f"{k} = {v}" for k, v in zip(keys, name if isinstance(name, tuple) else (name,))
-                          if not (isinstance(v, float) and np.isnan(v)))
+        values = name if isinstance(name, tuple) else (name,)
+        label = ", ".join(f"{k} = {int(v) if isinstance(v, float) and v.is_integer() else v}"
+                          for k, v in zip(keys, values) if not (isinstance(v, float) and np.isnan(v)))
         inband = g["nees_in_band_fraction"]
         row = {"configuration": label, "runs": len(g),
                "share of scans in the 95 % band (per run)": ar.fmt_num(inband.median()) + " median, "
@@ -59,7 +60,10 @@ def make(df, out_dir, results_path=None):
         if "nees_median" in g:
             row["NEES median (per run, median over runs)"] = ar.fmt_num(g["nees_median"].median())
         rows.append(row)
-        if results_path and "run_dir" in g:
+        # The figure shows the largest particle count and the least clutter of each filter and strategy.
+        plotted = all(g[c].iloc[0] == df[c].max() for c in ("particles",) if c in g) and \
+            all(g[c].iloc[0] == df[c].min() for c in ("clutter",) if c in g and g[c].notna().all())
+        if plotted and results_path and "run_dir" in g:
             series = [scan_nees(os.path.join(results_path, d)) for d in g["run_dir"] if isinstance(d, str)]
             series = [s for s in series if s is not None and len(s)]
             if series:
@@ -69,7 +73,7 @@ def make(df, out_dir, results_path=None):
     if curves:
         fig, ax = ar.new_figure(7.0, 4.4)
         ax.axhspan(*SINGLE_RUN_BAND, color="tab:green", alpha=0.12, label="single-run 95 % band")
-        for label, series in curves[:8]:
+        for label, series in curves:
             n = min(len(s) for s in series)
             stacked = np.vstack([s["nees"].to_numpy()[:n] for s in series])
             t = series[0]["time_s"].to_numpy()[:n]
