@@ -1,42 +1,48 @@
 // FastSlamOptions names and validation.
 #include "core/engine/fastslam_options.h"
 
+#include <array>
+#include <utility>
+
 #include <fmt/core.h>
 
 namespace arbor {
 
-std::string_view to_string(FilterVersion version) {
-  return version == FilterVersion::kFastSlam1 ? "fastslam1" : "fastslam2";
+namespace {
+
+// Each option's values with their command-line names; to_string and from_string read the same table.
+template <class E>
+using NameTable = std::array<std::pair<E, std::string_view>, 2>;
+
+constexpr NameTable<FilterVersion> kFilterNames{{{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}}};
+constexpr NameTable<MotionSampling> kSamplingNames{{{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
+constexpr NameTable<Likelihood> kLikelihoodNames{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
+
+template <class E>
+std::string_view name_in(const NameTable<E>& table, E value) {
+  for (const auto& [v, name] : table)
+    if (v == value) return name;
+  return "?";
 }
 
-bool from_string(std::string_view name, FilterVersion* version) {
-  if (name == "fastslam1") *version = FilterVersion::kFastSlam1;
-  else if (name == "fastslam2") *version = FilterVersion::kFastSlam2;
-  else return false;
-  return true;
+template <class E>
+bool parse_in(const NameTable<E>& table, std::string_view name, E* value) {
+  for (const auto& [v, n] : table)
+    if (n == name) {
+      *value = v;
+      return true;
+    }
+  return false;
 }
 
-std::string_view to_string(MotionSampling sampling) {
-  return sampling == MotionSampling::kPerScan ? "per-scan" : "per-control";
-}
+}  // namespace
 
-bool from_string(std::string_view name, MotionSampling* sampling) {
-  if (name == "per-scan") *sampling = MotionSampling::kPerScan;
-  else if (name == "per-control") *sampling = MotionSampling::kPerControl;
-  else return false;
-  return true;
-}
-
-std::string_view to_string(Likelihood likelihood) {
-  return likelihood == Likelihood::kGaussian ? "gaussian" : "student-t";
-}
-
-bool from_string(std::string_view name, Likelihood* likelihood) {
-  if (name == "gaussian") *likelihood = Likelihood::kGaussian;
-  else if (name == "student-t") *likelihood = Likelihood::kStudentT;
-  else return false;
-  return true;
-}
+std::string_view to_string(FilterVersion version) { return name_in(kFilterNames, version); }
+bool from_string(std::string_view name, FilterVersion* version) { return parse_in(kFilterNames, name, version); }
+std::string_view to_string(MotionSampling sampling) { return name_in(kSamplingNames, sampling); }
+bool from_string(std::string_view name, MotionSampling* sampling) { return parse_in(kSamplingNames, name, sampling); }
+std::string_view to_string(Likelihood likelihood) { return name_in(kLikelihoodNames, likelihood); }
+bool from_string(std::string_view name, Likelihood* likelihood) { return parse_in(kLikelihoodNames, name, likelihood); }
 
 std::string FastSlamOptions::validate() const {
   if (particles < 1) return fmt::format("particles must be at least 1 (got {})", particles);
