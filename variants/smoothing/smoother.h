@@ -62,9 +62,9 @@ struct SmootherOptions {
   double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-10;
-  // Added to the covariance of every chained-motion factor: the control noise of the velocity and Ackermann
-  // models leaves dt noise-free, so one step's J_u Q_u J_u^T has rank 2; this keeps the factor's square-root
-  // information finite without changing it where the motion noise is larger (variances: m^2, m^2, rad^2).
+  // Added to the covariance of every chained-motion factor: a short or standing interval's process noise is
+  // nearly singular (only the floor density moves a standing robot sideways); this keeps the factor's
+  // square-root information finite without changing it where the motion noise is larger (m^2, m^2, rad^2).
   Vec3 motion_floor_variance{1e-8, 1e-8, 1e-10};
   // Floor on the first-pose prior's standard deviations (a scenario whose initial pose is exact has zero).
   double prior_floor_sigma = 1e-6;
