@@ -60,10 +60,6 @@ inline BodyProcessNoise ackermann_body_noise(const Vec3& u, const AckermannVehic
   return {twist_body_noise(xi, u[2], B, Vec2(n.q_v, n.q_steer).asDiagonal()), 0.0};
 }
 
-inline Mat3 ackermann_process_noise(const Pose2& x, const Vec3& u, const AckermannVehicle& car, const AckermannNoise& n) {
-  return ackermann_body_noise(u, car, n).at(x.theta);
-}
-
 }  // namespace arbor
 
 #endif  // ARBOR_CORE_MODELS_ACKERMANN_MODEL_H_

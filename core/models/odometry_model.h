@@ -47,10 +47,6 @@ inline BodyProcessNoise odometry_body_noise(const Vec3& u, double dt, const Odom
   return q;
 }
 
-inline Mat3 odometry_process_noise(const Pose2& x, const Vec3& u, double dt, const OdometryNoise& n) {
-  return odometry_body_noise(u, dt, n).at(x.theta);
-}
-
 // The odometry control that takes pose a to pose b (inverse of odometry_apply), used by the simulator.
 inline Vec3 odometry_between(const Pose2& a, const Pose2& b) {
   const double dx = b.x - a.x, dy = b.y - a.y;

@@ -93,11 +93,6 @@ inline Mat3 twist_body_noise(const Twist& xi, double T, const Mat32& B, const Ma
   return body;
 }
 
-// Q_d in the world frame of a start heading theta0.
-inline Mat3 twist_process_noise(double theta0, const Twist& xi, double T, const Mat32& B, const Mat2& Q_c) {
-  return BodyProcessNoise{twist_body_noise(xi, T, B, Q_c), 0.0}.at(theta0);
-}
-
 // White noise on the forward speed and the turn rate of a twist (velocity and odometry models):
 //   PSD of the speed      q_v + k_v |v|                     [m^2/s]: q_v m^2/s, k_v m^2 per metre travelled
 //   PSD of the turn rate  q_omega + k_wv |v| + k_ww |omega| [rad^2/s]: rad^2/s, rad^2 per metre, rad^2 per radian

@@ -50,10 +50,6 @@ inline BodyProcessNoise velocity_body_noise(const Vec3& u, const VelocityNoise& 
   return {twist_body_noise({u[0], 0.0, u[1]}, u[2], forward_turn_noise_map(), n.psd(u[0], u[1])), 0.0};
 }
 
-inline Mat3 velocity_process_noise(const Pose2& x, const Vec3& u, const VelocityNoise& n) {
-  return velocity_body_noise(u, n).at(x.theta);
-}
-
 }  // namespace arbor
 
 #endif  // ARBOR_CORE_MODELS_VELOCITY_MODEL_H_

@@ -116,7 +116,7 @@ void fit_density(const std::vector<double>& ratio, double* q_mad, double* q) {
 
 MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, double min_speed) {
   std::vector<double> ratio_1, ratio_2;
-  const MotionModel model = s.motion, unit_1 = unit_noise_model(s.motion, 0), unit_2 = unit_noise_model(s.motion, 1);
+  const MotionModel unit_1 = unit_noise_model(s.motion, 0), unit_2 = unit_noise_model(s.motion, 1);
   const std::size_t n = s.steps.size();
   std::size_t i = 0;
   while (i < n) {
@@ -136,7 +136,7 @@ MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, do
       Pose2 x_a = x, x_b = x;
       unit_1.predict(&x_a, &A, u, dt);
       unit_2.predict(&x_b, &B, u, dt);
-      distance += (model.apply(x, u).position() - x.position()).norm();
+      distance += (x_a.position() - x.position()).norm();
       x = x_a;
       if (s.steps[j].truth_pose && s.steps[j].time_s - s.steps[i].time_s >= window_s) break;
     }

@@ -98,7 +98,7 @@ Scenario simulate(const SimulationOptions& o) {
         const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, dt), nullptr, nullptr);
         // The odometer believes in a pose off the true one by a draw of the reading's own process noise, so
         // that the filter's model (true = apply(reading) + noise of covariance Q_d) holds.
-        const Mat3 Q = odometry_process_noise(truth, odometry_between(truth, next), dt, o.odometry);
+        const Mat3 Q = odometry_body_noise(odometry_between(truth, next), dt, o.odometry).at(truth.theta);
         const Eigen::LLT<Mat3> llt(Q + 1e-18 * Mat3::Identity());
         const Vec3 e = llt.matrixL() * Vec3(odometer.normal(), odometer.normal(), odometer.normal());
         ScenarioStep step;

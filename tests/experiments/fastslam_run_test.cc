@@ -13,15 +13,6 @@
 namespace arbor {
 namespace {
 
-RunConfig config(FilterVersion version, int particles, std::uint64_t seed, int threads) {
-  RunConfig c;
-  c.options.version = version;
-  c.options.particles = particles;
-  c.options.seed = seed;
-  c.options.threads = threads;
-  return c;
-}
-
 // Runs with 1 and 2 threads and compares the output files byte for byte.
 void expect_identical_across_threads(const Scenario& scenario, RunConfig c, const std::string& name) {
   std::string files[2];
@@ -39,14 +30,14 @@ void expect_identical_across_threads(const Scenario& scenario, RunConfig c, cons
 
 TEST(FastSlamRun, BitIdenticalWithOneAndTwoThreads) {
   const Scenario scenario = testing::simulated_world(3, 120);
-  expect_identical_across_threads(scenario, config(FilterVersion::kFastSlam2, 50, 9, 1), "fs2");
-  expect_identical_across_threads(scenario, config(FilterVersion::kFastSlam1, 50, 9, 1), "fs1");
+  expect_identical_across_threads(scenario, testing::fastslam_config(FilterVersion::kFastSlam2, 50, 9, 1), "fs2");
+  expect_identical_across_threads(scenario, testing::fastslam_config(FilterVersion::kFastSlam1, 50, 9, 1), "fs1");
 }
 
 TEST(FastSlamRun, DifferentSeedsGiveDifferentRuns) {
   const Scenario scenario = testing::simulated_world(3, 60);
-  const auto a = run_fastslam(scenario, config(FilterVersion::kFastSlam2, 20, 1, 2));
-  const auto b = run_fastslam(scenario, config(FilterVersion::kFastSlam2, 20, 2, 2));
+  const auto a = run_fastslam(scenario, testing::fastslam_config(FilterVersion::kFastSlam2, 20, 1, 2));
+  const auto b = run_fastslam(scenario, testing::fastslam_config(FilterVersion::kFastSlam2, 20, 2, 2));
   EXPECT_NE(a.result["ate_rmse_m"], b.result["ate_rmse_m"]);
 }
 
@@ -60,7 +51,7 @@ TEST(FastSlamRun, FastSlam2IsConsistentOnAShortHorizonOver30Seeds) {
   const int seeds = 30, steps = 21;
   std::vector<double> nees_sum(steps, 0.0);
   for (int s = 1; s <= seeds; ++s) {
-    const RunOutput out = run_fastslam(testing::simulated_world(s, steps), config(FilterVersion::kFastSlam2, 100, s, 0));
+    const RunOutput out = run_fastslam(testing::simulated_world(s, steps), testing::fastslam_config(FilterVersion::kFastSlam2, 100, s, 0));
     // Step 0 scans from the exactly known start: no NEES there (0/0), so out.nees[k - 1] is step k's.
     ASSERT_EQ(out.nees.size(), static_cast<std::size_t>(steps - 1));
     for (int k = 1; k < steps; ++k) nees_sum[k] += out.nees[k - 1];
@@ -82,7 +73,7 @@ TEST(FastSlamRun, FastSlam2IsConsistentOnAShortHorizonOver30Seeds) {
 TEST(FastSlamRun, AteIsFarBelowDeadReckoning) {
   for (int s = 1; s <= 3; ++s) {
     for (auto version : {FilterVersion::kFastSlam1, FilterVersion::kFastSlam2}) {
-      const RunOutput out = run_fastslam(testing::simulated_world(s, 500), config(version, 100, s, 0));
+      const RunOutput out = run_fastslam(testing::simulated_world(s, 500), testing::fastslam_config(version, 100, s, 0));
       const double ate = out.result["ate_rmse_m"].get<double>();
       const double dr = out.result["dead_reckoning_ate_m"].get<double>();
       EXPECT_LT(ate, 0.1 * dr) << "seed " << s << " " << to_string(version);
@@ -93,7 +84,7 @@ TEST(FastSlamRun, AteIsFarBelowDeadReckoning) {
 }
 
 TEST(FastSlamRun, ResultHoldsTheContractFields) {
-  RunConfig c = config(FilterVersion::kFastSlam2, 10, 1, 1);
+  RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 10, 1, 1);
   const RunOutput out = run_fastslam(testing::simulated_world(1, 20), c);
   for (const char* key : {"config", "ate_rmse_m", "landmark_rmse_m", "nees_mean", "assoc_precision", "assoc_recall",
                           "assoc_f1", "landmarks", "steps", "step_time_median_s", "step_time_p95_s", "wall_time_s",

@@ -17,11 +17,7 @@ namespace arbor {
 namespace {
 
 RunConfig known(FilterVersion version, int particles, std::uint64_t seed, MotionSampling sampling) {
-  RunConfig c;
-  c.options.version = version;
-  c.options.particles = particles;
-  c.options.seed = seed;
-  c.options.threads = 2;
+  RunConfig c = testing::fastslam_config(version, particles, seed, 2);
   c.options.motion_sampling = sampling;
   return c;
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
 
 namespace arbor::testing {
@@ -21,6 +22,16 @@ inline Scenario simulated_world(std::uint64_t seed, int scans, double clutter = 
   o.clutter_rate = clutter;
   o.controls_per_scan = controls_per_scan;
   return simulate(o);
+}
+
+// A FastSLAM run with the default map and association (naive, known) and these settings.
+inline RunConfig fastslam_config(FilterVersion version, int particles, std::uint64_t seed, int threads) {
+  RunConfig c;
+  c.options.version = version;
+  c.options.particles = particles;
+  c.options.seed = seed;
+  c.options.threads = threads;
+  return c;
 }
 
 // A fresh directory under the system temp dir, named after the test.
