@@ -27,7 +27,6 @@
 #include "core/engine/rng.h"
 #include "core/io/scenario.h"
 #include "core/math/chi_square.h"
-#include "core/metrics/association_score.h"
 #include "core/models/motion_model.h"
 #include "core/models/range_bearing_model.h"
 
@@ -40,9 +39,8 @@ struct Particle {
   double log_weight = 0.0;
   Map map;
   PoseHistory history;
-  DecisionHistory decisions;    // only scans with measurements; for the smoother (`arbor smooth --associations`)
+  DecisionHistory decisions;    // scans with measurements or removals; for scoring and `arbor smooth --associations`
   LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end)
-  AssociationCounts counts;     // this lineage's decisions scored against ground truth (metrics only)
   std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
 };
 
@@ -191,6 +189,7 @@ class FastSlam {
     std::vector<LandmarkId> decision;          // per measurement
     std::vector<Touched> touched;
     std::vector<int> touched_of;               // per measurement: index into touched, or -1
+    std::vector<LandmarkId> erased;            // removed by this scan's negative evidence
   };
 
   void resample() {
@@ -253,6 +252,7 @@ class FastSlam {
       if (step.has_scan) {
         gather_nearby(p, p.pose, s);
         apply_negative_evidence(p, s, /*touched=*/{});
+        if (!s.erased.empty()) p.decisions.push({step_index_, {}, s.erased});
       }
       record_pose(p, step);
       return;
@@ -411,7 +411,7 @@ class FastSlam {
   }
 
   void record_decisions(ParticleState& p, std::size_t measurements, const Scratch& s) const {
-    StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements, kNoLandmark)};
+    StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements, kNoLandmark), s.erased};
     for (std::size_t k = 0; k < measurements; ++k)
       if (s.touched_of[k] >= 0) applied.landmarks[k] = s.touched[s.touched_of[k]].landmark.id;
     p.decisions.push(std::move(applied));
@@ -465,7 +465,7 @@ class FastSlam {
     return it != s.nearby.end() && it->id == id ? &*it : p.map.find(id);
   }
 
-  // One decision per measurement (landmark id, kNewLandmark or kSpurious), and the lineage's score.
+  // One decision per measurement: landmark id, kNewLandmark or kSpurious.
   void decide(ParticleState& p, const ScenarioStep& step, Scratch& s) {
     const auto& measurements = step.measurements;
     strategy_.solve(s.problem, s.strategy, s.result);
@@ -475,41 +475,24 @@ class FastSlam {
     p.step_hypotheses = s.result.stats.hypotheses;
     p.step_tests = s.result.stats.tests;
     p.rejected += s.result.stats.rejected;
-    if constexpr (!Assoc::kUsesGroundTruth) score_decisions(p, measurements, s);  // known is right by definition
-  }
-
-  // Scores each decision against the scenario's ground truth, where it has any (metrics only).
-  void score_decisions(Particle<Map>& p, const std::vector<Measurement>& measurements, const Scratch& s) const {
-    for (std::size_t k = 0; k < measurements.size(); ++k) {
-      const std::int32_t truth = measurements[k].truth_id;
-      if (truth == kTruthUnknown) continue;
-      ++p.counts.scored;
-      bool candidate_of_same_truth = false;
-      for (std::size_t c = 0; truth >= 0 && c < s.candidate_of.size(); ++c)
-        candidate_of_same_truth |= s.nearby[s.candidate_of[c]].truth_label == truth;
-      const LandmarkId d = s.decision[k];
-      if (d >= 0) {
-        const Landmark* lm = find_landmark(p, s, d);
-        if (truth >= 0 && lm && lm->truth_label == truth) ++p.counts.true_matches;
-        else ++p.counts.false_matches;
-      } else {
-        if (candidate_of_same_truth) ++p.counts.missed_matches;
-        if (d == kNewLandmark && (truth < 0 || candidate_of_same_truth)) ++p.counts.false_new;
-      }
-    }
   }
 
   // Landmarks predicted well inside the view but not observed lose evidence and may be pruned.
   // s.nearby must hold the landmarks gathered this step.
   void apply_negative_evidence(ParticleState& p, Scratch& s, const std::vector<Touched>& touched) {
+    s.erased.clear();
     for (const Landmark& lm : s.nearby) {
       bool seen = false;
       for (const auto& t : touched) seen |= t.landmark.id == lm.id;
       if (seen || !in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
       Landmark updated = lm;
       updated.log_odds = static_cast<float>(lm.log_odds - options_.log_odds_miss);
-      if (prune_ && updated.log_odds < options_.log_odds_prune) p.map.erase(lm.id);
-      else p.map.set(updated);
+      if (prune_ && updated.log_odds < options_.log_odds_prune) {
+        p.map.erase(lm.id);
+        s.erased.push_back(lm.id);
+      } else {
+        p.map.set(updated);
+      }
     }
     s.nearby.clear();
   }

@@ -16,14 +16,13 @@ class Filter {
   virtual void step(const ScenarioStep& step) = 0;
   virtual const StepStats& last_step_stats() const = 0;
   virtual PoseEstimate estimate() const = 0;
-  // The particle of highest weight: its trajectory (oldest first), its map (ascending id) and its lineage's
-  // association score.
+  // The particle of highest weight: its trajectory (oldest first) and its map (ascending id).
   virtual std::vector<TimedPose> best_trajectory() const = 0;
   virtual std::vector<Landmark> best_map() const = 0;
-  virtual AssociationCounts best_association_counts() const = 0;
   // Measurements the known-association gate rejected in the best particle's lineage.
   virtual std::int64_t best_rejected_measurements() const = 0;
-  // The best particle's association decisions, one entry per scan with measurements, oldest first.
+  // The best particle's association decisions, one entry per scan with measurements or removals, oldest
+  // first; core/metrics/decision_score.h scores them against ground truth.
   virtual std::vector<StepDecisions> best_decisions() const = 0;
   // Summed over all particles; shared nodes are counted once per particle that references them.
   virtual MapMemoryStats memory_stats() const = 0;
@@ -46,9 +45,6 @@ class FilterImpl final : public Filter {
     std::vector<Landmark> out;
     engine_.particle(engine_.best_particle()).map.for_each([&](const Landmark& lm) { out.push_back(lm); });
     return out;
-  }
-  AssociationCounts best_association_counts() const override {
-    return engine_.particle(engine_.best_particle()).counts;
   }
   std::int64_t best_rejected_measurements() const override {
     return engine_.particle(engine_.best_particle()).rejected;

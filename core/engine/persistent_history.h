@@ -76,10 +76,13 @@ struct TimedPose {
 };
 
 // One scan's association decisions as the particle applied them: per measurement the landmark it updated
-// or created, or kNoLandmark where the measurement was judged spurious (clutter).
+// or created, or kNoLandmark where the measurement was judged spurious (clutter); and the landmarks the
+// scan's negative evidence removed. Replayed, the record tells which landmarks the map held at every scan,
+// which is what scoring the decisions outside the filter needs (core/metrics/decision_score.h).
 struct StepDecisions {
   std::int64_t step = 0;
   std::vector<LandmarkId> landmarks;
+  std::vector<LandmarkId> erased;
 };
 
 using PoseHistory = PersistentHistory<TimedPose>;

@@ -9,6 +9,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/trajectory_io.h"
+#include "core/metrics/decision_score.h"
 #include "core/metrics/run_statistics.h"
 #include "core/metrics/trajectory_metrics.h"
 #include "experiments/run/progress.h"
@@ -75,7 +76,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
 
   const std::vector<TimedPose> best = filter->best_trajectory();
   const std::vector<Landmark> map = filter->best_map();
-  const AssociationCounts counts = filter->best_association_counts();
+  const std::vector<StepDecisions> decisions = filter->best_decisions();
+  const AssociationCounts counts = score_decisions(decisions, scenario);
   const MapMemoryStats memory = filter->memory_stats();
 
   const EvaluationTruth truth = evaluation_truth(scenario);
@@ -136,7 +138,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     write_tum(dir + "trajectory_mean.tum", mean_trajectory);
     write_map_csv(dir + "map.csv", map);
     write_file_atomically(dir + "steps.csv", steps_csv);
-    write_file_atomically(dir + "associations.csv", associations_csv(filter->best_decisions()));
+    write_file_atomically(dir + "associations.csv", associations_csv(decisions));
     // result.json last: its presence means the run finished and every other file is complete.
     write_file_atomically(dir + "result.json", r.dump(2) + "\n");
   }

@@ -92,7 +92,22 @@ TEST(FastSlamRun, ResultHoldsTheContractFields) {
     EXPECT_TRUE(out.result.contains(key)) << key;
   for (const char* key : {"filter", "map", "assoc", "particles", "seed", "threads", "commit", "host", "compiler"})
     EXPECT_TRUE(out.result["config"].contains(key)) << key;
-  EXPECT_TRUE(out.result["assoc_f1"].is_null()) << "known association has nothing to score";
+}
+
+// Known association scored from its record like any strategy: it never pairs wrongly, and every measurement
+// it leaves unpaired while the map holds its landmark is one its gate rejected.
+TEST(FastSlamRun, KnownAssociationScoresPerfectPrecisionAndMissesOnlyWhatItsGateRejects) {
+  RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 10, 1, 1);
+  c.options.association.known_gate_probability = 0.9;  // rejects about one measurement in ten
+  const RunOutput out = run_fastslam(testing::simulated_world(1, 60), c);
+  const auto& counts = out.result["assoc_counts"];
+  EXPECT_EQ(out.result["assoc_precision"].get<double>(), 1.0);
+  EXPECT_EQ(counts["false_matches"].get<int>(), 0);
+  EXPECT_EQ(counts["false_new"].get<int>(), 0);
+  EXPECT_GT(out.result["rejected_measurements"].get<int>(), 0);
+  EXPECT_EQ(counts["missed_matches"].get<int>(), out.result["rejected_measurements"].get<int>());
+  EXPECT_EQ(counts["true_matches"].get<int>() + counts["missed_matches"].get<int>() + out.result["landmarks"].get<int>(),
+            counts["scored"].get<int>());
 }
 
 }  // namespace
