@@ -35,6 +35,7 @@ inline std::vector<Landmark> make_landmark_field(std::int64_t n, std::uint64_t s
     lm.mean = Vec2(u(rng), u(rng));
     lm.cov = Mat2::Identity() * 0.25;
     lm.log_odds = 1.0f;
+    lm.confirmed = true;
   }
   auto strip = [&](const Landmark& lm) { return static_cast<std::int64_t>((lm.mean.y() + side / 2) / kStripWidthM); };
   std::sort(field.begin(), field.end(), [&](const Landmark& a, const Landmark& b) {

@@ -118,12 +118,14 @@ class FastSlam {
     stats_.n_eff = last_n_eff_;
     stats_.best_landmarks = particles_[best_particle()].map.size();
     ++step_index_;
+    scan_index_ += step.has_scan;
   }
 
   // Starts every particle from the same prior map: a map built before the run (the step benchmarks at up
   // to 10^6 landmarks, relocalisation in a known map). The particles' copies share it, so for a persistent
   // back end this costs O(M). New landmarks get ids above the prior's; with known association, a prior
-  // landmark's truth_label is the ground-truth id that refers to it.
+  // landmark's truth_label is the ground-truth id that refers to it. Prior landmarks are taken as they are:
+  // mark them confirmed, or an unknown-association filter will drop them as unconfirmed.
   void set_prior_map(const Map& map) {
     LandmarkId next = 0;
     map.for_each([&](const Landmark& lm) { next = std::max(next, lm.id + 1); });
@@ -371,6 +373,7 @@ class FastSlam {
       lm.cov = 0.5 * (lm.cov + lm.cov.transpose());
       ARBOR_CHECK(lm.cov(0, 0) > 0.0 && lm.cov.determinant() > 0.0, "landmark {} covariance lost definiteness", lm.id);
       lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
+      lm.confirmed |= lm.log_odds >= options_.log_odds_confirm;
       const float sig = measurements[k].signature;
       if (!std::isnan(sig)) lm.signature = std::isnan(lm.signature) ? sig : lm.signature + 0.2f * (sig - lm.signature);
     }
@@ -390,6 +393,8 @@ class FastSlam {
       lm.mean = range_bearing_inverse(p.pose, measurements[k].z());
       lm.cov = range_bearing_initial_covariance(p.pose, measurements[k].z(), R_);
       lm.log_odds = static_cast<float>(options_.log_odds_initial);
+      lm.confirmed = lm.log_odds >= options_.log_odds_confirm;
+      lm.born_scan = scan_index_;
       lm.signature = measurements[k].signature;
       lm.truth_label = measurements[k].truth_id >= 0 ? measurements[k].truth_id : -1;
       s.touched_of[k] = static_cast<int>(s.touched.size());
@@ -477,14 +482,21 @@ class FastSlam {
     p.rejected += s.result.stats.rejected;
   }
 
-  // Landmarks predicted well inside the view but not observed lose evidence and may be pruned.
-  // s.nearby must hold the landmarks gathered this step.
+  // Landmarks predicted well inside the view but not observed lose evidence and may be pruned; provisional
+  // ones near the robot that have outlived their window are dropped. s.nearby must hold the landmarks
+  // gathered this step.
   void apply_negative_evidence(ParticleState& p, Scratch& s, const std::vector<Touched>& touched) {
     s.erased.clear();
     for (const Landmark& lm : s.nearby) {
       bool seen = false;
       for (const auto& t : touched) seen |= t.landmark.id == lm.id;
-      if (seen || !in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
+      if (seen) continue;
+      if (prune_ && expired(lm)) {
+        p.map.erase(lm.id);
+        s.erased.push_back(lm.id);
+        continue;
+      }
+      if (!in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
       Landmark updated = lm;
       updated.log_odds = static_cast<float>(lm.log_odds - options_.log_odds_miss);
       if (prune_ && updated.log_odds < options_.log_odds_prune) {
@@ -495,6 +507,10 @@ class FastSlam {
       }
     }
     s.nearby.clear();
+  }
+
+  bool expired(const Landmark& lm) const {
+    return !lm.confirmed && options_.provisional_scans > 0 && scan_index_ - lm.born_scan >= options_.provisional_scans;
   }
 
   FastSlamOptions options_;
@@ -512,6 +528,7 @@ class FastSlam {
   std::vector<double> weights_;
   tbb::enumerable_thread_specific<Scratch> scratch_;
   std::int64_t step_index_ = 0;
+  std::int32_t scan_index_ = 0;  // scans before this step: a landmark's born_scan
   double last_n_eff_ = 0.0;
   StepStats stats_;
 };

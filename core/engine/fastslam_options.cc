@@ -1,4 +1,5 @@
 // FastSlamOptions names and validation.
+#include <cmath>
 #include "core/engine/fastslam_options.h"
 
 #include <array>
@@ -53,6 +54,8 @@ std::string FastSlamOptions::validate() const {
   if (!(p > 0.0 && p < 1.0)) return fmt::format("gate probability must lie in (0, 1) (got {})", p);
   if (!(q > 0.0 && q < 1.0)) return fmt::format("new-landmark probability must lie in (0, 1) (got {})", q);
   if (!(log_odds_hit > 0.0 && log_odds_miss >= 0.0)) return "log-odds hit must be positive and miss non-negative";
+  if (!std::isfinite(log_odds_confirm)) return "log-odds confirmation level must be finite";
+  if (provisional_scans < 0) return fmt::format("provisional scans must be 0 (keep) or positive (got {})", provisional_scans);
   if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
   const double k = association.known_gate_probability;
   if (!(k > 0.0 && k <= 1.0)) return fmt::format("known-association gate probability must lie in (0, 1] (got {})", k);

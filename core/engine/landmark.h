@@ -60,6 +60,12 @@ struct Landmark {
   LandmarkId id = kNoLandmark;
   // Existence evidence in log-odds: raised when seen, lowered when predicted in view and missed.
   float log_odds = 0.0f;
+  // A landmark starts provisional and is confirmed, for good, once its log-odds reach the confirmation
+  // level; only confirmed landmarks are the filter's map (FastSlamOptions::log_odds_confirm).
+  bool confirmed = false;
+  // The scan (counted from 0) that started it: a provisional landmark not confirmed within a few scans is
+  // dropped (FastSlamOptions::provisional_scans).
+  std::int32_t born_scan = 0;
   // Scalar signature (tree diameter in Victoria Park); NaN when the sensor gives none.
   float signature = std::numeric_limits<float>::quiet_NaN();
   // Ground-truth id of the measurement that created the landmark (-1: clutter or unknown). Bookkeeping for
@@ -68,7 +74,8 @@ struct Landmark {
   LocalitySet locality;
 
   bool operator==(const Landmark& o) const {
-    return id == o.id && mean == o.mean && cov == o.cov && log_odds == o.log_odds &&
+    return id == o.id && mean == o.mean && cov == o.cov && log_odds == o.log_odds && confirmed == o.confirmed &&
+           born_scan == o.born_scan &&
            (signature == o.signature || (std::isnan(signature) && std::isnan(o.signature))) &&
            truth_label == o.truth_label && locality == o.locality;
   }

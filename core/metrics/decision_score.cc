@@ -2,6 +2,7 @@
 #include "core/metrics/decision_score.h"
 
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "core/check.h"
@@ -52,6 +53,21 @@ AssociationCounts score_decisions(const std::vector<StepDecisions>& decisions, c
     }
   }
   return counts;
+}
+
+std::int64_t spurious_landmarks(const std::vector<Landmark>& map) {
+  std::unordered_set<std::int32_t> seen;
+  std::int64_t spurious = 0;
+  for (const Landmark& lm : map) spurious += lm.truth_label < 0 || !seen.insert(lm.truth_label).second;
+  return spurious;
+}
+
+std::int64_t observed_true_landmarks(const Scenario& scenario) {
+  std::unordered_set<std::int32_t> seen;
+  for (const ScenarioStep& step : scenario.steps)
+    for (const Measurement& m : step.measurements)
+      if (m.truth_id >= 0) seen.insert(m.truth_id);
+  return static_cast<std::int64_t>(seen.size());
 }
 
 }  // namespace arbor

@@ -3,6 +3,7 @@
 #ifndef ARBOR_CORE_METRICS_DECISION_SCORE_H_
 #define ARBOR_CORE_METRICS_DECISION_SCORE_H_
 
+#include <cstdint>
 #include <vector>
 
 #include "core/engine/persistent_history.h"
@@ -18,6 +19,15 @@ namespace arbor {
 // That is wider than the engine's candidate view: a landmark the estimate has carried out of view is still a
 // missed match, since the map should have found it.
 AssociationCounts score_decisions(const std::vector<StepDecisions>& decisions, const Scenario& scenario);
+
+// Landmarks of the map without a true counterpart of their own: those started from clutter, and every
+// landmark beyond the first started from the same true landmark (a duplicate). Reads Landmark::truth_label,
+// so it means something only where the measurements carry truth ids.
+std::int64_t spurious_landmarks(const std::vector<Landmark>& map);
+
+// True landmarks the scenario's measurements observe at least once (distinct truth ids): what a perfect map
+// of this run would hold, where the world's count includes landmarks never in view.
+std::int64_t observed_true_landmarks(const Scenario& scenario);
 
 }  // namespace arbor
 

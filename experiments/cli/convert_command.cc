@@ -125,8 +125,9 @@ void add_convert_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--robot", options->robot, "UTIAS MRCLAM: which robot (subject number, 1-5)")->check(CLI::PositiveNumber);
   cmd->add_option("--out", options->out, "Scenario file to write")->required();
   cmd->add_flag("--estimate-noise", options->estimate_noise,
-                "UTIAS, Car Park: estimate measurement and motion noise from ground truth (robust: 1.4826 x MAD) and "
-                "write the estimates into the scenario instead of the documented defaults");
+                "UTIAS, Car Park: estimate measurement and motion noise from ground truth (the standard "
+                "deviation within 5 sigma; 1.4826 x MAD reported beside it) and write the estimates into the scenario "
+                "instead of the documented defaults");
   cmd->add_flag("--strict", options->strict,
                 "UTIAS: treat unknown barcodes (known false detections) as errors instead of dropping and counting them");
   cmd->add_option("--noise-window", options->noise_window_s,

@@ -62,6 +62,15 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       ->capture_default_str();
   cmd->add_option("--prune", config->options.log_odds_prune, "Drop landmarks whose existence log-odds fall below this")
       ->capture_default_str();
+  cmd->add_option("--confirm", config->options.log_odds_confirm,
+                  "A new landmark is provisional until its existence log-odds reach this (start 1, +1 per sighting, "
+                  "-0.5 per miss); only confirmed landmarks make the reported map (1: every landmark at once)")
+      ->capture_default_str();
+  cmd->add_option("--provisional-scans", config->options.provisional_scans,
+                  "Drop a landmark still provisional this many scans after the one that started it (0: never); not "
+                  "with --assoc known")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
       ->required();
   cmd->add_flag("--quiet", *quiet, "No progress line");

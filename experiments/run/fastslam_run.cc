@@ -75,7 +75,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   progress.finish();
 
   const std::vector<TimedPose> best = filter->best_trajectory();
-  const std::vector<Landmark> map = filter->best_map();
+  // The filter's map is its confirmed landmarks; provisional ones are counted apart.
+  std::vector<Landmark> map = filter->best_map();
+  const std::size_t provisional_landmarks = std::erase_if(map, [](const Landmark& lm) { return !lm.confirmed; });
   const std::vector<StepDecisions> decisions = filter->best_decisions();
   const AssociationCounts counts = score_decisions(decisions, scenario);
   const MapMemoryStats memory = filter->memory_stats();
@@ -96,6 +98,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"gate_probability", config.options.association.gate_probability},
                  {"new_landmark_probability", config.options.association.new_landmark_probability},
                  {"log_odds_prune", config.options.log_odds_prune},
+                 {"log_odds_confirm", config.options.log_odds_confirm},
+                 {"provisional_scans", config.options.provisional_scans},
                  {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
                  {"likelihood", std::string(to_string(config.options.likelihood))},
                  {"student_dof", config.options.student_dof},
@@ -117,7 +121,10 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                        {"missed_matches", counts.missed_matches}, {"false_new", counts.false_new},
                        {"scored", counts.scored}};
   r["landmarks"] = map.size();
+  r["provisional_landmarks"] = provisional_landmarks;
+  r["spurious_landmarks"] = counts.scored > 0 ? Json(spurious_landmarks(map)) : Json(nullptr);
   r["true_landmarks"] = scenario.truth_landmarks.size();
+  r["observed_true_landmarks"] = counts.scored > 0 ? Json(observed_true_landmarks(scenario)) : Json(nullptr);
   r["steps"] = scenario.steps.size();
   r["scenario_duration_s"] = scenario.steps.empty() ? 0.0 : scenario.steps.back().time_s - scenario.start_time_s;
   r["step_time_median_s"] = quantile(step_times, 0.5);

@@ -12,8 +12,12 @@ namespace arbor {
 namespace {
 
 RunOutput run(const Scenario& scenario, const std::string& map, const std::string& assoc, std::uint64_t seed,
-              int threads, int particles = 100, const std::string& out_dir = "") {
+              int threads, int particles = 100, const std::string& out_dir = "", bool existence = true) {
   RunConfig c;
+  if (!existence) {
+    c.options.log_odds_confirm = c.options.log_odds_initial;  // every new landmark confirmed at once
+    c.options.provisional_scans = 0;
+  }
   c.map = map;
   c.assoc = assoc;
   c.options.version = FilterVersion::kFastSlam2;
@@ -24,24 +28,29 @@ RunOutput run(const Scenario& scenario, const std::string& map, const std::strin
   return run_fastslam(scenario, c);
 }
 
-// Measured at commit time on seeds 1-3 (300 steps, 2 clutter per scan, 100 particles): see kMeasured below.
+// Measured at commit time on seeds 1-3 (300 steps, 2 clutter per scan, 100 particles): JCBB F1 0.984-0.993
+// (NN 0.991-0.994: JCBB is not yet at least as good as NN here, issue 12), ATE 0.15-0.21 m against known
+// association's 0.10-0.27 m; confirmed landmarks 132-138 for 131-139 true ones observed (JCBB and NN alike).
 TEST(UnknownAssociation, Fastslam2WithJcbbMatchesKnownAssociationOnAClutteredWorld) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const Scenario scenario = testing::simulated_world(seed, 300, 2.0);
     const RunOutput known = run(scenario, "tree", "known", seed, 0);
     const RunOutput jcbb = run(scenario, "tree", "jcbb", seed, 0);
-    const double f1 = jcbb.result["assoc_f1"].get<double>();
+    const RunOutput nn = run(scenario, "tree", "nn", seed, 0);
     const double ate_known = known.result["ate_rmse_m"].get<double>();
     const double ate_jcbb = jcbb.result["ate_rmse_m"].get<double>();
-    EXPECT_GE(f1, 0.95) << "seed " << seed;
+    EXPECT_GE(jcbb.result["assoc_f1"].get<double>(), 0.95) << "seed " << seed;
     EXPECT_LE(ate_jcbb, 1.5 * ate_known) << "seed " << seed << ": known " << ate_known << " m";
-    // Clutter must not grow the map without bound: most provisional landmarks are pruned. Clutter that
-    // appears at the edge of view and leaves it before it can be missed twice survives.
-    std::size_t clutter = 0;
-    for (const auto& step : scenario.steps)
-      for (const auto& m : step.measurements) clutter += m.truth_id == kTruthClutter;
-    const double extra = jcbb.result["landmarks"].get<double>() - known.result["landmarks"].get<double>();
-    EXPECT_LT(extra, 0.35 * clutter) << "seed " << seed << ": " << clutter << " clutter measurements";
+    // Clutter stays out of the confirmed map: a clutter landmark is seen once and never confirmed.
+    const double observed = jcbb.result["observed_true_landmarks"].get<double>();
+    EXPECT_LE(jcbb.result["landmarks"].get<double>(), 1.2 * observed) << "seed " << seed;
+    EXPECT_LE(nn.result["landmarks"].get<double>(), 1.2 * observed) << "seed " << seed;
+    EXPECT_LE(jcbb.result["spurious_landmarks"].get<double>(), 0.05 * observed) << "seed " << seed;
+    if (seed > 1) continue;
+    // Without the bookkeeping (every new landmark confirmed at birth) the clutter that negative evidence
+    // cannot reach stays: the test must tell the two apart.
+    const RunOutput ablation = run(scenario, "tree", "jcbb", seed, 0, 100, "", /*existence=*/false);
+    EXPECT_GT(ablation.result["landmarks"].get<double>(), 1.2 * observed);
   }
 }
 

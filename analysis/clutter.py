@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""Association in clutter (issue 12), from the result.json files that experiments/scripts/clutter_study.sh
+writes under OUT/runs/<world>-c<clutter>-s<seed>-<strategy>/.
+
+Per world, clutter rate and strategy (means over seeds): association F1 (scored from the recorded decisions),
+ATE and its ratio to known association's on the same scenario and seed, the confirmed map landmarks per true
+landmark the measurements observed, the confirmed landmarks without a true counterpart, and wall time.
+`jcbb_no_existence` is JCBB with every new landmark confirmed at once (the existence ablation).
+
+Usage: /usr/bin/python3 analysis/clutter.py OUT
+Writes OUT/clutter.md, OUT/clutter.csv and OUT/clutter.png (F1, ATE ratio and map ratio against clutter).
+"""
+import glob
+import json
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from arbor_results import markdown_table  # noqa: E402
+
+STRATEGIES = ["known", "nn", "jcbb", "jcbb_no_existence", "locality"]
+RUN = re.compile(r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)")
+
+
+def read_runs(out):
+    rows = []
+    for path in sorted(glob.glob(os.path.join(out, "runs", "*", "result.json"))):
+        m = RUN.fullmatch(os.path.basename(os.path.dirname(path)))
+        if not m:
+            continue
+        with open(path, encoding="utf-8") as f:
+            r = json.load(f)
+        rows.append({"world": m["world"], "clutter": float(m["clutter"]), "seed": int(m["seed"]),
+                     "strategy": m["strategy"], "f1": r.get("assoc_f1"), "ate_m": r.get("ate_rmse_m"),
+                     "landmarks": r.get("landmarks"), "observed": r.get("observed_true_landmarks"),
+                     "spurious": r.get("spurious_landmarks"), "wall_s": r.get("wall_time_s")})
+    df = pd.DataFrame(rows)
+    if df.empty:
+        return df
+    known = df[df.strategy == "known"].set_index(["world", "clutter", "seed"])["ate_m"]
+    df["ate_vs_known"] = [r.ate_m / known.get((r.world, r.clutter, r.seed), float("nan")) for r in df.itertuples()]
+    df["map_ratio"] = df.landmarks / df.observed
+    return df
+
+
+def main(out):
+    df = read_runs(out)
+    if df.empty:
+        sys.exit(f"no runs under {out}/runs")
+    df.to_csv(os.path.join(out, "clutter.csv"), index=False)
+    metrics = ["f1", "ate_m", "ate_vs_known", "map_ratio", "spurious", "wall_s"]
+    table = (df.groupby(["world", "clutter", "strategy"])
+               .agg(seeds=("seed", "count"), **{m: (m, "mean") for m in metrics})
+               .reset_index())
+    table["order"] = table.strategy.map({s: i for i, s in enumerate(STRATEGIES)})
+    table = table.sort_values(["world", "clutter", "order"]).drop(columns="order")
+    with open(os.path.join(out, "clutter.md"), "w", encoding="utf-8") as f:
+        f.write("# Association in clutter: FastSLAM 2.0, 100 particles (means over seeds)\n\n")
+        f.write("f1: association F1 from the recorded decisions; ate_vs_known: ATE over known association's on the "
+                "same scenario and seed (mean of the per-seed ratios); map_ratio: confirmed landmarks per true landmark "
+                "observed; spurious: confirmed landmarks from clutter or duplicating another.\n\n")
+        f.write(markdown_table(table) + "\n")
+
+    worlds = sorted(df.world.unique())
+    fig, axes = plt.subplots(3, len(worlds), figsize=(5.0 * len(worlds), 9.0), squeeze=False, sharex=True)
+    for col, world in enumerate(worlds):
+        for strategy in STRATEGIES:
+            d = table[(table.world == world) & (table.strategy == strategy)]
+            if d.empty:
+                continue
+            for row, (metric, name) in enumerate([("f1", "association F1"), ("ate_vs_known", "ATE / known's ATE"),
+                                                  ("map_ratio", "confirmed / observed landmarks")]):
+                axes[row][col].plot(d.clutter, d[metric], marker="o", label=strategy)
+                axes[row][col].set_ylabel(name)
+        axes[0][col].set_title(f"{world} world, 250 landmarks")
+        axes[-1][col].set_xlabel("spurious measurements per scan (Poisson mean)")
+    axes[0][0].legend(fontsize="small")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "clutter.png"), dpi=120)
+    print(f"wrote {out}/clutter.md, clutter.csv, clutter.png")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])

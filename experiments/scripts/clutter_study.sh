@@ -1,0 +1,39 @@
+#!/bin/bash
+# Association in clutter (issue 12): FastSLAM 2.0, 100 particles, on clustered and rooms worlds of 250
+# landmarks with 0, 2 and 5 spurious measurements per scan, seeds 1-5, for every strategy; JCBB also with the
+# landmark existence bookkeeping off (--confirm 1 --provisional-scans 0: every new landmark counts at once and
+# only negative evidence removes it), the ablation of deliverable 1. Locality runs on the first LOCALITY_SEEDS
+# seeds only (about 40 s a run on 2 cores). A run whose result.json exists is skipped, so an interrupted study
+# resumes. Then:
+#   /usr/bin/python3 analysis/clutter.py OUT
+# Usage: experiments/scripts/clutter_study.sh OUT [ARBOR_BINARY]
+# Scale with SEEDS, CLUTTER, WORLDS, LOCALITY_SEEDS.
+set -euo pipefail
+out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
+arbor=$(realpath "${2:-build/bin/arbor}")
+seeds=${SEEDS:-"1 2 3 4 5"}
+clutter=${CLUTTER:-"0 2 5"}
+worlds=${WORLDS:-"clustered rooms"}
+locality_seeds=${LOCALITY_SEEDS:-"1 2"}
+cd "$(dirname "$0")/../.."
+mkdir -p "$out/scenarios"
+
+source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
+
+for w in $worlds; do
+  for c in $clutter; do
+    for s in $seeds; do
+      scn=$out/scenarios/$w-c$c-s$s.scn
+      [ -f "$scn" ] || "$arbor" simulate --world "$w" --landmarks 250 --clutter "$c" --seed "$s" --out "$scn" > /dev/null
+      common=(--scenario "$scn" --filter fastslam2 --particles 100 --seed "$s" --threads 2)
+      for a in known nn jcbb; do
+        once "$out/runs/$w-c$c-s$s-$a" run "${common[@]}" --assoc "$a"
+      done
+      once "$out/runs/$w-c$c-s$s-jcbb_no_existence" run "${common[@]}" --assoc jcbb --confirm 1 --provisional-scans 0
+      for l in $locality_seeds; do
+        [ "$l" = "$s" ] && once "$out/runs/$w-c$c-s$s-locality" run "${common[@]}" --assoc locality
+      done
+    done
+  done
+done
+echo "done: $out"
