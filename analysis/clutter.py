@@ -5,7 +5,8 @@ writes under OUT/runs/<world>-c<clutter>-s<seed>-<strategy>/.
 Per world, clutter rate and strategy (means over seeds): association F1 (scored from the recorded decisions),
 ATE and its ratio to known association's on the same scenario and seed, the confirmed map landmarks per true
 landmark the measurements observed, the confirmed landmarks without a true counterpart, and wall time.
-`jcbb_no_existence` is JCBB with every new landmark confirmed at once (the existence ablation).
+`jcbb_no_existence` is JCBB with every new landmark confirmed at once (the existence ablation);
+`known_no_gate` is known association without its chi-square gate.
 
 Usage: /usr/bin/python3 analysis/clutter.py OUT
 Writes OUT/clutter.md, OUT/clutter.csv and OUT/clutter.png (F1, ATE ratio and map ratio against clutter).
@@ -25,7 +26,7 @@ import pandas as pd  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from arbor_results import markdown_table  # noqa: E402
 
-STRATEGIES = ["known", "nn", "jcbb", "jcbb_no_existence", "locality"]
+STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
 RUN = re.compile(r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)")
 
 

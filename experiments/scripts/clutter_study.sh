@@ -1,9 +1,10 @@
 #!/bin/bash
 # Association in clutter (issue 12): FastSLAM 2.0, 100 particles, on clustered and rooms worlds of 250
-# landmarks with 0, 2 and 5 spurious measurements per scan, seeds 1-5, for every strategy; JCBB also with the
+# landmarks with 0, 2 and 5 spurious measurements per scan, seeds 1-5, for every strategy. Also JCBB with the
 # landmark existence bookkeeping off (--confirm 1 --provisional-scans 0: every new landmark counts at once and
-# only negative evidence removes it), the ablation of deliverable 1. Locality runs on the first LOCALITY_SEEDS
-# seeds only (about 40 s a run on 2 cores). A run whose result.json exists is skipped, so an interrupted study
+# only negative evidence removes it), the ablation of deliverable 1; and known association without its
+# chi-square gate (--known-gate 1), the stronger reference where the noise has no outliers. Locality runs on
+# LOCALITY_SEEDS (default: every seed). A run whose result.json exists is skipped, so an interrupted study
 # resumes. Then:
 #   /usr/bin/python3 analysis/clutter.py OUT
 # Usage: experiments/scripts/clutter_study.sh OUT [ARBOR_BINARY]
@@ -14,7 +15,7 @@ arbor=$(realpath "${2:-build/bin/arbor}")
 seeds=${SEEDS:-"1 2 3 4 5"}
 clutter=${CLUTTER:-"0 2 5"}
 worlds=${WORLDS:-"clustered rooms"}
-locality_seeds=${LOCALITY_SEEDS:-"1 2"}
+locality_seeds=${LOCALITY_SEEDS:-$seeds}
 cd "$(dirname "$0")/../.."
 mkdir -p "$out/scenarios"
 
@@ -30,6 +31,7 @@ for w in $worlds; do
         once "$out/runs/$w-c$c-s$s-$a" run "${common[@]}" --assoc "$a"
       done
       once "$out/runs/$w-c$c-s$s-jcbb_no_existence" run "${common[@]}" --assoc jcbb --confirm 1 --provisional-scans 0
+      once "$out/runs/$w-c$c-s$s-known_no_gate" run "${common[@]}" --assoc known --known-gate 1
       for l in $locality_seeds; do
         [ "$l" = "$s" ] && once "$out/runs/$w-c$c-s$s-locality" run "${common[@]}" --assoc locality
       done

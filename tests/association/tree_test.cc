@@ -132,6 +132,24 @@ TEST(LocalityTree, AnswerDoesNotDependOnObservationOrder) {
   }
 }
 
+// Per particle, a scan with one measurement cannot fix a pose, so the tree has no hypothesis; the prior
+// decides: the measurement pairs with the landmark it predicts, and a measurement far from every landmark
+// starts a new one.
+TEST(LocalityTree, PairsASingleMeasurementWithThePrior) {
+  const Pose2 x{1.0, 2.0, 0.3};
+  const Mat2 R = Vec2(0.01, 1e-4).asDiagonal();
+  AssociationProblem p;
+  p.R = R;
+  p.P = Vec3(0.01, 0.01, 1e-4).asDiagonal();
+  for (int j = 0; j < 5; ++j)
+    p.candidates.push_back(testing::make_candidate(j, x, Vec2(4.0 + 3.0 * j, 2.0 + 2.0 * j), Mat2::Identity() * 0.01, R));
+  const Vec2 z = p.candidates[3].z_hat + Vec2(0.05, 0.005);
+  p.measurements.push_back(testing::make_measurement(z.x(), z.y()));
+  EXPECT_EQ(run<LocalityTree>(p).pairing, std::vector<LandmarkId>{3});
+  p.measurements.front() = testing::make_measurement(z.x() + 5.0, z.y());
+  EXPECT_EQ(run<LocalityTree>(p).pairing, std::vector<LandmarkId>{kNewLandmark});
+}
+
 TEST(RigidAlignment, RecoversAKnownPose) {
   const Pose2 truth{3.0, -2.0, 2.5};
   std::vector<Vec2> p{{1.0, 0.0}, {0.0, 4.0}, {-2.0, 1.0}, {5.0, 5.0}};

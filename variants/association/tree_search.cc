@@ -46,6 +46,7 @@ class TreeSearch {
     s_.ranked.clear();
     s_.ranked_pairings.clear();
     s_.ranked_pose.clear();
+    if (set_.check_prior) restrict_to_prior();
     if (!set_.use_locality) return;
     // Locality sets hold ids; the search needs candidate indices (candidates are sorted by id).
     s_.loc_begin.assign(n_ + 1, 0);
@@ -69,7 +70,10 @@ class TreeSearch {
     const int left = m_ - k - 1;
     if (!can_enter(depth + optimistic_extra(k, depth))) return;
     if (can_enter(depth + 1 + left)) {
-      if (!set_.use_locality || depth == 0) {
+      if (depth == 0 && set_.check_prior) {
+        for (int e = s_.prior_begin[k]; e < s_.prior_begin[k + 1] && !stats_->budget_exhausted; ++e)
+          branch(k, depth, s_.prior_list[e]);
+      } else if (!set_.use_locality || depth == 0) {
         for (int g = 0; g < n_ && !stats_->budget_exhausted; ++g) branch(k, depth, g);
       } else {
         // Copy: allowed[depth] is stable while deeper levels rewrite allowed[depth + 1 ..].
@@ -85,8 +89,10 @@ class TreeSearch {
   bool finish(AssociationResult& result, Pose2* pose_out) {
     result.pairing.assign(m_, kUnassigned);
     if (s_.ranked.empty()) {
-      // No verified pose: classify the unpaired measurements with the prior's predictions.
+      // No verified pose (a scan with one measurement never has one): per particle, the prior decides what
+      // is left; for relocalisation, nothing is paired.
       gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+      if (set_.check_prior) complete_with_prior(&result.pairing);
       finish_unpaired(s_.gating.near_any, &result.pairing);
       return false;
     }
@@ -110,14 +116,24 @@ class TreeSearch {
       }
     }
     if (best_count < 0) {
-      // Every verified hypothesis contradicted the prior: nothing is paired.
+      // Every verified hypothesis contradicted the prior: the prior decides alone.
       gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+      complete_with_prior(&result.pairing);
       finish_unpaired(s_.gating.near_any, &result.pairing);
       return false;
     }
-    s_.gating.near_any = std::move(near_any);
     for (int k = 0; k < m_; ++k)
       if (accepted[k] >= 0) result.pairing[s_.order[k]] = p_.candidates[accepted[k]].id;
+    if (set_.check_prior) {
+      // Per particle, what the tree left open is paired with the prior, whose gates hold the pose
+      // covariance (the completion at the fitted pose has none, so it misses pairings and starts duplicates).
+      gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+      const std::vector<LandmarkId> tree_pairing = result.pairing;
+      complete_with_prior(&result.pairing);
+      if (!jointly_compatible(result.pairing)) result.pairing = tree_pairing;
+      for (int i = 0; i < m_; ++i) near_any[i] |= s_.gating.near_any[i];
+    }
+    s_.gating.near_any = std::move(near_any);
     finish_unpaired(s_.gating.near_any, &result.pairing);
     if (pose_out) *pose_out = pose;
     return true;
@@ -150,8 +166,28 @@ class TreeSearch {
     return levels;
   }
 
+  // Per particle the answer must agree with the prior (consistent_with_prior), so a pairing the prior
+  // puts outside even the new-landmark gate can never be part of it: the tree skips it, and tries as
+  // anchors only the candidates the prediction allows.
+  void restrict_to_prior() {
+    gate_individually(p_, set_.new_landmark_gate, set_.new_landmark_gate, &s_.gating, stats_);
+    std::vector<int> level_of(m_);
+    for (int k = 0; k < m_; ++k) level_of[s_.order[k]] = k;
+    s_.prior_ok.assign(static_cast<std::size_t>(m_) * n_, 0);
+    for (const GatedPair& g : s_.gating.pairs) s_.prior_ok[static_cast<std::size_t>(level_of[g.measurement]) * n_ + g.candidate] = 1;
+    s_.prior_begin.assign(m_ + 1, 0);
+    s_.prior_list.clear();
+    for (int k = 0; k < m_; ++k) {
+      s_.prior_begin[k] = static_cast<int>(s_.prior_list.size());
+      for (int j = 0; j < n_; ++j)
+        if (s_.prior_ok[static_cast<std::size_t>(k) * n_ + j]) s_.prior_list.push_back(j);
+    }
+    s_.prior_begin[m_] = static_cast<int>(s_.prior_list.size());
+  }
+
   // Unary and binary constraints of candidate g at level k against the `depth` pairings so far.
   bool passes(int k, int depth, int g) {
+    if (set_.check_prior && !s_.prior_ok[static_cast<std::size_t>(k) * n_ + g]) return false;
     ++stats_->tests;
     if (!unary(k, g)) return false;
     for (int t = 0; t < depth; ++t) {
@@ -234,6 +270,36 @@ class TreeSearch {
     search(k + 1, depth + 1);
     s_.used[g] = 0;
     s_.current[k] = -1;
+  }
+
+  // Gated nearest neighbour on the prior's predictions for the measurements still unassigned, over the
+  // candidates not yet taken: greedy by (Mahalanobis distance, landmark id, canonical rank), as
+  // NearestNeighbor decides. s_.gating must hold this problem's individual gating.
+  void complete_with_prior(std::vector<LandmarkId>* pairing) {
+    std::vector<int> rank(m_);
+    for (int k = 0; k < m_; ++k) rank[s_.order[k]] = k;
+    std::fill(s_.used.begin(), s_.used.end(), 0);
+    for (const LandmarkId id : *pairing)
+      if (id >= 0) s_.used[index_of(id)] = 1;
+    std::vector<GatedPair> pairs = s_.gating.pairs;
+    std::sort(pairs.begin(), pairs.end(), [&](const GatedPair& a, const GatedPair& b) {
+      if (a.d2 != b.d2) return a.d2 < b.d2;
+      if (a.candidate != b.candidate) return a.candidate < b.candidate;  // candidates ascend by id
+      return rank[a.measurement] < rank[b.measurement];
+    });
+    for (const GatedPair& g : pairs) {
+      if ((*pairing)[g.measurement] != kUnassigned || s_.used[g.candidate]) continue;
+      (*pairing)[g.measurement] = p_.candidates[g.candidate].id;
+      s_.used[g.candidate] = 1;
+    }
+  }
+
+  bool jointly_compatible(const std::vector<LandmarkId>& pairing) {
+    std::vector<LandmarkId> ids(pairing);
+    for (LandmarkId& id : ids)
+      if (id < 0) id = kNewLandmark;
+    ++stats_->tests;
+    return joint_compatibility(p_, ids, set_.joint_gate).compatible;
   }
 
   // Per-particle use: the pose-free answer must also pass the joint test with the particle's own predictions

@@ -31,6 +31,11 @@ struct TreeScratch {
   std::vector<Mat2> jacobian;    // d position / d z_hat per candidate (problems with a joint covariance)
   std::vector<Vec2> fit_p, fit_q;
   std::vector<Mat2> fit_cov;
+  // Per-particle use: prior_ok[k * n + j] says candidate j lies inside the new-landmark gate of the
+  // measurement at level k under the prior (pose covariance included); prior_begin/prior_list hold those
+  // candidates per level, the anchors tried at depth 0.
+  std::vector<char> prior_ok;
+  std::vector<int> prior_begin, prior_list;
 };
 
 struct TreeSettings {
