@@ -50,6 +50,7 @@ struct StepStats {
   bool resampled = false;   // whether this step began by resampling
   std::int64_t hypotheses = 0;
   std::int64_t tests = 0;
+  std::int64_t budget_exhausted = 0;  // particles whose search stopped at its budget (best answer so far)
   std::size_t best_landmarks = 0;
 };
 
@@ -112,6 +113,7 @@ class FastSlam {
       ARBOR_CHECK(!std::isnan(log_weights[i]), "NaN weight for particle {} at step {}", i, step_index_);
       stats_.hypotheses += particles_[i].step_hypotheses;
       stats_.tests += particles_[i].step_tests;
+      stats_.budget_exhausted += particles_[i].step_budget_exhausted;
     }
     last_n_eff_ = normalize_log_weights(log_weights, &weights_);
     for (std::size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(weights_[i]);
@@ -175,6 +177,7 @@ class FastSlam {
   struct ParticleState : Particle<Map> {
     std::int64_t step_hypotheses = 0;
     std::int64_t step_tests = 0;
+    bool step_budget_exhausted = false;
   };
 
   // A landmark that this scan updates (paired) or creates (new): a working copy, written back once.
@@ -246,6 +249,7 @@ class FastSlam {
   // existence evidence. Between scans (per-scan sampling) only the prediction runs.
   void update_particle(ParticleState& p, const ScenarioStep& step, int index, Scratch& s) {
     p.step_hypotheses = p.step_tests = 0;
+    p.step_budget_exhausted = false;
     const bool fastslam2 = options_.version == FilterVersion::kFastSlam2;
     const bool per_control = options_.motion_sampling == MotionSampling::kPerControl;
     motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
@@ -479,6 +483,7 @@ class FastSlam {
     s.decision = s.result.pairing;
     p.step_hypotheses = s.result.stats.hypotheses;
     p.step_tests = s.result.stats.tests;
+    p.step_budget_exhausted = s.result.stats.budget_exhausted;
     p.rejected += s.result.stats.rejected;
   }
 

@@ -60,6 +60,11 @@ void add_run_command(CLI::App& app, CommandAction* action) {
                   "its id names; 1 disables the gate")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
+  cmd->add_option("--max-hypotheses", config->options.association.max_hypotheses,
+                  "Search budget of JCBB and the interpretation trees per particle and scan; a search that reaches it "
+                  "answers with its best hypothesis so far and is counted in result.json budget_exhausted")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--prune", config->options.log_odds_prune, "Drop landmarks whose existence log-odds fall below this")
       ->capture_default_str();
   cmd->add_option("--confirm", config->options.log_odds_confirm,

@@ -42,7 +42,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   std::vector<TimedPose> mean_trajectory{{scenario.start_time_s, filter->estimate().mean}};
   std::string steps_csv = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees\n";
   double n_eff_sum = 0.0;
-  std::int64_t resamples = 0, hypotheses = 0, tests = 0;
+  std::int64_t resamples = 0, hypotheses = 0, tests = 0, budget_exhausted = 0;
   Progress progress(fmt::format("run {}/{}/{}", to_string(config.options.version), config.map, config.assoc),
                     static_cast<std::int64_t>(scenario.steps.size()), config.progress);
 
@@ -57,6 +57,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     resamples += stats.resampled;
     hypotheses += stats.hypotheses;
     tests += stats.tests;
+    budget_exhausted += stats.budget_exhausted;
     std::string nees_text;
     if (step.has_scan || step.truth_pose) {
       const PoseEstimate estimate = filter->estimate();
@@ -97,6 +98,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"resample_threshold", config.options.resample_threshold},
                  {"gate_probability", config.options.association.gate_probability},
                  {"new_landmark_probability", config.options.association.new_landmark_probability},
+                 {"max_hypotheses", config.options.association.max_hypotheses},
                  {"log_odds_prune", config.options.log_odds_prune},
                  {"log_odds_confirm", config.options.log_odds_confirm},
                  {"provisional_scans", config.options.provisional_scans},
@@ -133,6 +135,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["resamples"] = resamples;
   r["hypotheses"] = hypotheses;
   r["compatibility_tests"] = tests;
+  r["budget_exhausted"] = budget_exhausted;
   r["map_bytes_per_particle"] = memory.bytes / particles;
   r["map_shared_fraction"] = memory.bytes ? double(memory.shared_bytes) / memory.bytes : 0.0;
   r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
