@@ -15,7 +15,7 @@
 #include "core/metrics/run_statistics.h"
 #include "variants/association/joint_compatibility.h"
 #include "variants/association/problem_generator.h"
-#include "variants/association/strategy_dispatch.h"
+#include "variants/association/strategy_list.h"
 
 namespace arbor {
 namespace {
@@ -33,7 +33,7 @@ void run_case(const Case& c) {
   int compatible = 0, exhausted = 0;
   AssociationOptions options;
   options.max_hypotheses = c.budget;
-  visit_strategy(StandaloneStrategies{}, c.strategy, [&]<class S>() {
+  visit_strategy(c.strategy, [&]<class S>() {
     const S strategy(options);
     typename S::Scratch scratch;
     for (int seed = 1; seed <= c.seeds; ++seed) {

@@ -32,7 +32,7 @@ bool contains(const std::vector<std::string>& list, std::string_view name) {
 }  // namespace
 
 std::vector<std::string> map_backend_names() { return names(MapBackends{}); }
-std::vector<std::string> association_names() { return names(AssociationStrategies{}); }
+std::vector<std::string> association_names() { return filter_strategy_names(); }
 
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
                                     const FastSlamOptions& options) {

@@ -10,28 +10,24 @@
 #include <vector>
 
 #include "core/engine/filter.h"
-#include "variants/association/jcbb.h"
-#include "variants/association/known_association.h"
-#include "variants/association/locality_tree.h"
-#include "variants/association/nearest_neighbor.h"
+#include "variants/association/strategy_list.h"
 #include "variants/maps/hamt_map.h"
 #include "variants/maps/persistent_tree_map.h"
 #include "variants/maps/vector_map.h"
+#include "variants/type_list.h"
 
 namespace arbor {
 
-template <class... T>
-struct TypeList {};
-
 using MapBackends = TypeList<VectorMap, PersistentTreeMap, HamtMap<>>;
-using AssociationStrategies = TypeList<KnownAssociation, NearestNeighbor, NearestNeighborNoExclusion, Jcbb, LocalityTree>;
+// The association strategies are listed once, in variants/association/strategy_list.h; the engine is built
+// for those whose traits say in_filter.
 
 // Builds the engine for the named variants; throws InputError (field "map" or "assoc") listing the valid names.
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
                                     const FastSlamOptions& options);
 
 std::vector<std::string> map_backend_names();
-std::vector<std::string> association_names();
+std::vector<std::string> association_names();  // the strategies usable in the filter
 
 // The engine instantiations of one map back end with every strategy. Each back end's instantiations live
 // in their own translation unit (variants/engine/filters_<name>.cc, one ARBOR_INSTANTIATE_FILTERS line) so

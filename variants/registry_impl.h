@@ -11,10 +11,11 @@ template <LandmarkMap Map, class... Strategies>
 std::unique_ptr<Filter> make_with_strategy(TypeList<Strategies...>, std::string_view assoc, const Scenario& scenario,
                                            const FastSlamOptions& options) {
   std::unique_ptr<Filter> filter;
-  ((assoc == Strategies::kName && !filter
-        ? (void)(filter = std::make_unique<FilterImpl<Map, Strategies>>(scenario, options))
-        : (void)0),
-   ...);
+  const auto make = [&]<class S>() {
+    if constexpr (S::kTraits.in_filter)
+      if (!filter && assoc == S::kName) filter = std::make_unique<FilterImpl<Map, S>>(scenario, options);
+  };
+  (make.template operator()<Strategies>(), ...);
   return filter;
 }
 

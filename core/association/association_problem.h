@@ -85,18 +85,33 @@ struct AssociationOptions {
   double known_gate_probability = 0.999;
 };
 
+// What a strategy is and promises. The one strategy list (variants/association/strategy_list.h) is filtered
+// by these: the CLI's choices, the engine instantiations, the benchmarks and the conformance suite
+// (tests/association/strategy_conformance_test.cc, which checks every promise made here).
+struct StrategyTraits {
+  // Pairs by the measurements' truth ids and the candidates' truth labels (known association): the engine
+  // shows it every landmark in the query box (an id must find its landmark wherever the estimate put it)
+  // and does not prune by existence evidence (the ids say what exists).
+  bool uses_ground_truth = false;
+  bool in_filter = true;    // offered per particle by `arbor run`
+  bool standalone = true;   // offered by `arbor associate`, `arbor relocalize` and the benchmarks
+  bool mutually_exclusive = true;  // never pairs two measurements of one scan with one landmark
+  // Every answer passes the joint chi-square test with the problem's own predictions (pose part included).
+  bool jointly_compatible = false;
+  // stats.hypotheses never exceeds the locality bound n((c+1)^m - 1)/c + 1 (DESIGN.md §4).
+  bool locality_bound = false;
+};
+
 // The AssociationStrategy concept. Strategies are stateless apart from their options; solve() is called
 // concurrently from many particles, each thread with its own Scratch.
-//   A a(options);  typename A::Scratch s;  a.solve(problem, s, result);  A::kName
-// Known association (ground-truth ids) is the strategy with kUsesGroundTruth = true: it pairs by the
-// measurements' truth ids and the candidates' truth labels, and the engine does not score its decisions.
+//   A a(options);  typename A::Scratch s;  a.solve(problem, s, result);  A::kName  A::kTraits
 template <class A>
 concept AssociationStrategy = std::constructible_from<A, const AssociationOptions&> &&
     std::default_initializable<typename A::Scratch> &&
     requires(const A a, const AssociationProblem& p, typename A::Scratch& s, AssociationResult& r) {
       a.solve(p, s, r);
       { A::kName } -> std::convertible_to<std::string_view>;
-      { A::kUsesGroundTruth } -> std::convertible_to<bool>;
+      { A::kTraits } -> std::convertible_to<StrategyTraits>;
     };
 
 }  // namespace arbor

@@ -73,7 +73,7 @@ class FastSlam {
     const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
     log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
                                std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
-    prune_ = !Assoc::kUsesGroundTruth || options.prune_with_known_association;
+    prune_ = !Assoc::kTraits.uses_ground_truth || options.prune_with_known_association;
     const double nu = options.student_dof;
     student_log_norm_ = std::lgamma(0.5 * (nu + 2.0)) - std::lgamma(0.5 * nu) - std::log(nu * kPi);
     last_time_s_ = scenario.start_time_s;
@@ -446,7 +446,7 @@ class FastSlam {
       c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
       // The oracle must find the landmark an id names wherever the estimate puts it: were it left out, a
       // second landmark would start for the same id. Every other strategy sees only what could be in view.
-      if (!Assoc::kUsesGroundTruth && !in_candidate_view(c.z_hat, margin)) continue;
+      if (!Assoc::kTraits.uses_ground_truth && !in_candidate_view(c.z_hat, margin)) continue;
       c.id = lm.id;
       c.truth_label = lm.truth_label;
       c.S = H_m * lm.cov * H_m.transpose() + R_;

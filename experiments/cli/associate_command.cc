@@ -15,7 +15,7 @@
 #include "core/metrics/association_score.h"
 #include "variants/association/problem_generator.h"
 #include "variants/association/problem_io.h"
-#include "variants/association/strategy_dispatch.h"
+#include "variants/association/strategy_list.h"
 
 namespace arbor::cli {
 namespace {
@@ -66,7 +66,7 @@ int run_solve(const AssociateArgs& a) {
   if (a.assoc == "locality") assign_nearest_localities(&problem, options.locality_capacity);
   AssociationResult result;
   double seconds = 0.0;
-  const bool known = visit_strategy(StandaloneStrategies{}, a.assoc, [&]<class S>() {
+  const bool known = visit_strategy(a.assoc, [&]<class S>() {
     const S strategy(options);
     typename S::Scratch scratch;
     const auto start = std::chrono::steady_clock::now();
@@ -75,7 +75,7 @@ int run_solve(const AssociateArgs& a) {
   });
   if (!known)
     throw InputError("", 0, "--assoc", fmt::format("unknown strategy '{}' (valid: {})", a.assoc,
-                                                   fmt::join(strategy_names(StandaloneStrategies{}), ", ")));
+                                                   fmt::join(standalone_strategy_names(), ", ")));
   for (LandmarkId id : result.pairing) fmt::print("{}\n", id >= 0 ? id : -1);
   fmt::print("stats hypotheses={} tests={} seconds={:.9f}{}\n", result.stats.hypotheses, result.stats.tests, seconds,
              result.stats.budget_exhausted ? " budget_exhausted=1" : "");
@@ -99,7 +99,8 @@ void add_associate_command(CLI::App& app, CommandAction* action) {
       "paired landmark id (-1: unpaired), then 'stats hypotheses=H tests=T seconds=S'. With --generate, write a "
       "random problem and its ground truth (FILE.truth) instead.");
   cmd->add_option("--problem", args->problem, "Problem file (exchange format)");
-  cmd->add_option("--assoc", args->assoc, "Strategy: nn, nn-independent, jcbb, locality, itree")->capture_default_str();
+  cmd->add_option("--assoc", args->assoc, fmt::format("Strategy: {}", fmt::join(standalone_strategy_names(), ", ")))
+      ->capture_default_str();
   cmd->add_option("--chi2", args->chi2, "Gate probability of the chi-square tests (individual and joint)")
       ->capture_default_str();
   cmd->add_option("--new-landmark-chi2", args->new_landmark_chi2,

@@ -16,7 +16,7 @@
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
 #include "experiments/sim/world.h"
-#include "variants/association/strategy_dispatch.h"
+#include "variants/association/strategy_list.h"
 
 namespace arbor::cli {
 namespace {
@@ -101,9 +101,9 @@ int run_relocalize(const RelocalizeArgs& a) {
   if (a.trials < 1) throw InputError("", 0, "--trials", "must be at least 1");
   if (a.clutter < 0.0) throw InputError("", 0, "--clutter", "must be >= 0");
   for (const auto& s : a.strategies)
-    if (!visit_strategy(StandaloneStrategies{}, s, []<class S>() {}))
+    if (!visit_strategy(s, []<class S>() {}))
       throw InputError("", 0, "--assoc", fmt::format("unknown strategy '{}' (valid: {})", s,
-                                                     fmt::join(strategy_names(StandaloneStrategies{}), ", ")));
+                                                     fmt::join(standalone_strategy_names(), ", ")));
   wo.landmarks = a.landmarks;
   wo.seed = a.seed;
   const World world = make_world(wo);
@@ -173,7 +173,7 @@ int run_relocalize(const RelocalizeArgs& a) {
       whole_map.candidates.push_back(make_candidate(map, j, prior, R));
 
     for (std::size_t s = 0; s < a.strategies.size(); ++s) {
-      visit_strategy(StandaloneStrategies{}, a.strategies[s], [&]<class S>() {
+      visit_strategy(a.strategies[s], [&]<class S>() {
         const bool pose_free = S::kName == LocalityTree::kName || S::kName == InterpretationTree::kName;
         const AssociationProblem& problem = pose_free ? whole_map : with_prior;
         const S strategy(options);

@@ -46,7 +46,7 @@ class Jcbb {
  public:
   using Scratch = JcbbScratch;
   static constexpr std::string_view kName = "jcbb";
-  static constexpr bool kUsesGroundTruth = false;
+  static constexpr StrategyTraits kTraits{.jointly_compatible = true};
 
   explicit Jcbb(const AssociationOptions& options);
   void solve(const AssociationProblem& problem, Scratch& scratch, AssociationResult& result) const;

@@ -20,7 +20,7 @@ namespace arbor {
 class KnownAssociation {
  public:
   static constexpr std::string_view kName = "known";
-  static constexpr bool kUsesGroundTruth = true;
+  static constexpr StrategyTraits kTraits{.uses_ground_truth = true, .standalone = false};
   struct Scratch {};
 
   explicit KnownAssociation(const AssociationOptions& options)

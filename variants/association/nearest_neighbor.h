@@ -32,7 +32,7 @@ class NearestNeighborStrategy {
  public:
   using Scratch = NearestNeighborScratch;
   static constexpr std::string_view kName = kExclusive ? "nn" : "nn-independent";
-  static constexpr bool kUsesGroundTruth = false;
+  static constexpr StrategyTraits kTraits{.mutually_exclusive = kExclusive};
 
   explicit NearestNeighborStrategy(const AssociationOptions& options)
       : gate_(chi_square_quantile(options.gate_probability, 2)),
