@@ -42,6 +42,14 @@ void write_file_atomically(const std::string& path, std::string_view text) {
     throw InputError(path, 0, "", fmt::format("cannot rename into place: {}", std::strerror(errno)));
 }
 
+void forget_finished_run(const std::string& out_dir) {
+  if (out_dir.empty()) return;
+  std::error_code error;
+  const std::filesystem::path result = std::filesystem::path(out_dir) / "result.json";
+  std::filesystem::remove(result, error);
+  if (error) throw InputError(result.string(), 0, "", fmt::format("cannot remove the previous run's result: {}", error.message()));
+}
+
 void append_line_durably(const std::string& path, std::string_view text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   if (fd < 0) throw InputError(path, 0, "", fmt::format("cannot append: {}", std::strerror(errno)));

@@ -11,6 +11,11 @@ namespace arbor {
 // Throws InputError when the directory cannot be written.
 void write_file_atomically(const std::string& path, std::string_view text);
 
+// A run's output directory: result.json is written last, so its presence marks a finished run. A rerun
+// into the same directory removes the old one before it starts; were it left, a run that fails half-way
+// would leave the old result.json beside new trajectory and map files, and look finished.
+void forget_finished_run(const std::string& out_dir);
+
 // Appends text (one or more complete lines) with a single write() on an O_APPEND descriptor followed by
 // fsync, so a killed process leaves either the whole row or none of it.
 void append_line_durably(const std::string& path, std::string_view text);

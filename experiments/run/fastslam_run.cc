@@ -33,6 +33,7 @@ std::string associations_csv(const std::vector<StepDecisions>& decisions) {
 
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const auto wall_start = std::chrono::steady_clock::now();
+  forget_finished_run(config.out_dir);
   std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
   const int threads = config.options.threads > 0 ? config.options.threads : tbb::info::default_concurrency();
 

@@ -1,10 +1,13 @@
 // Whole FastSLAM runs on simulated worlds: bit-identical across thread counts, consistent on short horizons
-// (NEES over 30 seeds), far more accurate than dead reckoning.
-#include <gtest/gtest.h>
-
+// (NEES over 30 seeds), far more accurate than dead reckoning; the result contract, and a failed rerun
+// leaves no result behind.
 #include <algorithm>
+#include <filesystem>
 #include <numeric>
 
+#include <gtest/gtest.h>
+
+#include "core/io/input_error.h"
 #include "core/io/trajectory_io.h"
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
@@ -108,6 +111,18 @@ TEST(FastSlamRun, KnownAssociationScoresPerfectPrecisionAndMissesOnlyWhatItsGate
   EXPECT_EQ(counts["missed_matches"].get<int>(), out.result["rejected_measurements"].get<int>());
   const int started = out.result["landmarks"].get<int>() + out.result["provisional_landmarks"].get<int>();
   EXPECT_EQ(counts["true_matches"].get<int>() + counts["missed_matches"].get<int>() + started, counts["scored"].get<int>());
+}
+
+// A rerun into a directory that holds a finished run forgets that run first: were its result.json left, a
+// rerun that fails (here on an unknown map back end) would leave a directory that looks finished.
+TEST(FastSlamRun, ARerunThatFailsLeavesNoResultBehind) {
+  RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 5, 1, 1);
+  c.out_dir = testing::scratch_dir("rerun_fails");
+  run_fastslam(testing::simulated_world(1, 10), c);
+  ASSERT_TRUE(std::filesystem::exists(c.out_dir + "/result.json"));
+  c.map = "no-such-map";
+  EXPECT_THROW(run_fastslam(testing::simulated_world(1, 10), c), InputError);
+  EXPECT_FALSE(std::filesystem::exists(c.out_dir + "/result.json"));
 }
 
 }  // namespace
