@@ -45,6 +45,10 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
                   "distance variance per metre [m], heading variance per metre [rad^2/m] and per radian turned "
                   "[rad^2/rad] (docs/scenario_format.md)")
       ->expected(5);
+  cmd->add_option("--kidnap", options->kidnap_time_s,
+                  "Kidnapped robot: at the first scan at or after this time [s], carry the robot unseen by its odometer "
+                  "to where it was at half that time, and drive on from there")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--signatures", options->signatures, "Report a noisy scalar signature with each measurement");
   cmd->add_option("--seed", options->seed, "Seed of the world and of all noise")->capture_default_str();
   cmd->add_option("--out", *out, "Scenario file to write")->required();

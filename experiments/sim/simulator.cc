@@ -51,6 +51,7 @@ Scenario simulate(const SimulationOptions& o) {
   require(o.detection_probability > 0.0 && o.detection_probability <= 1.0, "detection",
           "detection probability must lie in (0, 1]");
   require(o.loop_inset_fraction > 0.0 && o.loop_inset_fraction < 0.5, "inset", "loop inset must lie in (0, 0.5)");
+  require(std::isfinite(o.kidnap_time_s), "kidnap", "kidnap time must be finite");
 
   const World world = make_world(o.world);
   Scenario s;
@@ -63,6 +64,7 @@ Scenario simulate(const SimulationOptions& o) {
                 {"steps", fmt::format("{}", o.steps)},
                 {"controls_per_scan", fmt::format("{}", o.controls_per_scan)},
                 {"seed", fmt::format("{}", o.seed)}};
+  if (o.kidnap_time_s >= 0.0) s.metadata["kidnap_time_s"] = fmt::format("{}", o.kidnap_time_s);
   s.motion.kind = MotionModelKind::kOdometry;
   s.motion.odometry = o.odometry;
   s.sensor = o.sensor;
@@ -84,8 +86,14 @@ Scenario simulate(const SimulationOptions& o) {
   const double dt = o.dt_s / K;
   // Step 0 stands still and scans from the known initial pose: the first landmarks are anchored to it, as the
   // initial pose anchors the gauge. Without it the first motion's heading error rotates the whole map.
+  std::vector<Pose2> scan_poses;  // the true pose at each scan, for the kidnapping
+  bool kidnapped = false;
   for (int k = 0; k < o.steps; ++k) {
     RandomStream rng(o.seed, k, 0, RandomPurpose::kSimulation);
+    if (k > 0 && !kidnapped && o.kidnap_time_s >= 0.0 && k * o.dt_s >= o.kidnap_time_s) {
+      truth = scan_poses[k / 2];  // carried off between two readings; the odometer sees nothing
+      kidnapped = true;
+    }
     if (k > 0) {
       // Steer towards the next corner with a bounded turn rate, chosen once per scan interval; the robot moves
       // along the exact arc, read by the odometer K times.
@@ -114,6 +122,7 @@ Scenario simulate(const SimulationOptions& o) {
     step.time_s = k * o.dt_s;
     step.truth_pose = truth;
     step.has_scan = true;
+    scan_poses.push_back(truth);
 
     grid.visit_within(truth.position(), s.sensor.max_range_m, [&](int index) {
       const Vec2& m = world.landmarks[index].position;

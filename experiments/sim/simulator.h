@@ -27,6 +27,10 @@ struct SimulationOptions {
   // of driving, the per-reading noise of Arbor's earlier simulator at its 0.5 s step.
   OdometryNoise odometry{1e-6, 1e-6, 1.25e-3, 5e-4, 4e-4};
   bool signatures = false;    // report a noisy signature (sigma: sensor.sigma_signature, default 0.05)
+  // Kidnapped robot: at the first scan at or after this time [s] the robot is carried, unseen by its
+  // odometer, to where it was at half that time (a place it has mapped), and drives on from there.
+  // Negative: never.
+  double kidnap_time_s = -1.0;
   std::uint64_t seed = 1;
 
   static SensorModel default_sensor() {
