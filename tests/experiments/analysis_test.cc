@@ -1,6 +1,7 @@
 // The analysis scripts run with the system Python on the committed results fixture and produce their files.
 // Skipped (with the reason) where /usr/bin/python3 lacks numpy, pandas or matplotlib.
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -59,6 +60,30 @@ TEST_F(AnalysisScripts, FigureScriptsRunOnTheirOwn) {
   ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/trajectory.py", run, "--out", out / "run.png"}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   EXPECT_GT(std::filesystem::file_size(out / "run.png"), 1000u);
+}
+
+// The clutter study's table: known association is the reference of each world and clutter rate (its ratio
+// is 1), and the ratio of another strategy is the ratio of the mean aligned ATEs.
+TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
+  ScratchDir out("clutter");
+  const auto write_run = [&](const std::string& name, double ate_aligned, int landmarks) {
+    const std::filesystem::path dir = std::filesystem::path(out.str()) / "runs" / name;
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "result.json")
+        << "{\"assoc_f1\": 0.98, \"ate_rmse_m\": 1.0, \"ate_aligned_rmse_m\": " << ate_aligned << ", \"landmarks\": "
+        << landmarks << ", \"observed_true_landmarks\": 100, \"spurious_landmarks\": 2, \"wall_time_s\": 1.5}";
+  };
+  write_run("rooms-c2-s1-known", 0.2, 100);
+  write_run("rooms-c2-s2-known", 0.4, 100);
+  write_run("rooms-c2-s1-jcbb", 0.3, 104);
+  write_run("rooms-c2-s2-jcbb", 0.6, 106);
+  write_run("not-a-run", 9.0, 1);
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  const std::string table = read_text(out / "clutter.md");
+  EXPECT_NE(table.find("| rooms | 2 | known | 2 | 0.98 | 1 | 0.3 | 1 | 1 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| rooms | 2 | jcbb | 2 | 0.98 | 1 | 0.45 | 1.5 | 1.05 |"), std::string::npos) << table;
+  EXPECT_GT(std::filesystem::file_size(out / "clutter.png"), 1000u);
 }
 
 }  // namespace
