@@ -18,9 +18,14 @@ def make(df, out_dir, results_path=None):
     if not ar.has_data(df, x_col, "step_time_median_s", "map") or df[x_col].nunique() < 2:
         return []
     df = df[df["step_time_median_s"].notna()]
+    # A line needs two map sizes within one configuration; runs on one dataset each give a single point per
+    # configuration, and an empty figure would say nothing.
+    lines = list(ar.lines_for(df, x_col))
+    if not lines:
+        return []
     fig, ax = ar.new_figure()
     rows = []
-    for name, g in ar.lines_for(df, x_col):
+    for name, g in lines:
         slope, ci, intercept, n = ar.fit_loglog(g[x_col], g["step_time_median_s"])
         s = ar.summarize(g, [x_col], "step_time_median_s")
         line = ax.errorbar(s[x_col], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",

@@ -23,9 +23,14 @@ def make(df, out_dir, results_path=None):
     if metric is None or not ar.has_data(df, x_col) or df[x_col].nunique() < 2:
         return []
     df = df[df[metric].notna()]
+    # A line needs two map sizes within one configuration; runs on one dataset each give a single point per
+    # configuration, and an empty figure would say nothing.
+    lines = list(ar.lines_for(df, x_col))
+    if not lines:
+        return []
     fig, ax = ar.new_figure()
     rows = []
-    for name, g in ar.lines_for(df, x_col):
+    for name, g in lines:
         slope, ci, intercept, n = ar.fit_loglog(g[x_col], g[metric])
         s = ar.summarize(g, [x_col], metric)
         line = ax.errorbar(s[x_col], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
