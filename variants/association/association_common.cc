@@ -41,6 +41,21 @@ void gate_individually(const AssociationProblem& problem, double gate, double ne
   stats->tests += static_cast<std::int64_t>(m) * n;
 }
 
+void pair_greedily(const AssociationProblem& problem, const std::vector<int>& rank, std::vector<GatedPair>* pairs,
+                   std::vector<char>* taken, std::vector<LandmarkId>* pairing) {
+  const auto id_of = [&](const GatedPair& p) { return problem.candidates[p.candidate].id; };
+  std::sort(pairs->begin(), pairs->end(), [&](const GatedPair& a, const GatedPair& b) {
+    if (a.d2 != b.d2) return a.d2 < b.d2;
+    if (id_of(a) != id_of(b)) return id_of(a) < id_of(b);
+    return rank[a.measurement] < rank[b.measurement];
+  });
+  for (const GatedPair& p : *pairs) {
+    if ((*pairing)[p.measurement] != kUnassigned || (*taken)[p.candidate]) continue;
+    (*pairing)[p.measurement] = id_of(p);
+    (*taken)[p.candidate] = 1;
+  }
+}
+
 void canonical_measurement_order(const AssociationProblem& problem, std::vector<int>* order) {
   const auto& ms = problem.measurements;
   order->resize(ms.size());

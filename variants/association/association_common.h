@@ -37,6 +37,12 @@ struct IndividualGating {
 void gate_individually(const AssociationProblem& problem, double gate, double new_landmark_gate,
                        IndividualGating* gating, AssociationStats* stats);
 
+// Mutual exclusion resolved greedily: *pairs sorted (in place) by (Mahalanobis distance, landmark id, the
+// measurement's rank in the canonical order), each pair accepted when its measurement is still kUnassigned
+// in *pairing and its candidate not yet taken. The order makes the answer independent of the input order.
+void pair_greedily(const AssociationProblem& problem, const std::vector<int>& rank, std::vector<GatedPair>* pairs,
+                   std::vector<char>* taken, std::vector<LandmarkId>* pairing);
+
 // Indices of the measurements sorted by (range, bearing, signature, index): the order every tree search uses,
 // so the answer does not depend on the order of the input (the index only separates exact duplicates).
 void canonical_measurement_order(const AssociationProblem& problem, std::vector<int>* order);

@@ -1,8 +1,6 @@
 // Gated nearest neighbour with and without greedy mutual exclusion.
 #include "variants/association/nearest_neighbor.h"
 
-#include <algorithm>
-
 #include "core/math/chi_square.h"
 
 namespace arbor {
@@ -29,17 +27,8 @@ void solve_nearest_neighbor(const AssociationProblem& problem, double gate, doub
     association::canonical_measurement_order(problem, &scratch.order);
     scratch.rank.resize(m);
     for (int k = 0; k < m; ++k) scratch.rank[scratch.order[k]] = k;
-    std::sort(pairs.begin(), pairs.end(), [&](const GatedPair& a, const GatedPair& b) {
-      if (a.d2 != b.d2) return a.d2 < b.d2;
-      if (id_of(a) != id_of(b)) return id_of(a) < id_of(b);
-      return scratch.rank[a.measurement] < scratch.rank[b.measurement];
-    });
     scratch.taken.assign(problem.candidates.size(), 0);
-    for (const GatedPair& p : pairs) {
-      if (result.pairing[p.measurement] != association::kUnassigned || scratch.taken[p.candidate]) continue;
-      result.pairing[p.measurement] = id_of(p);
-      scratch.taken[p.candidate] = 1;
-    }
+    association::pair_greedily(problem, scratch.rank, &pairs, &scratch.taken, &result.pairing);
   }
   result.stats.hypotheses = 1;
   association::finish_unpaired(scratch.gating.near_any, &result.pairing);

@@ -27,6 +27,8 @@ class TreeSearch {
 
   void prepare() {
     canonical_measurement_order(p_, &s_.order);
+    s_.rank.resize(m_);
+    for (int k = 0; k < m_; ++k) s_.rank[s_.order[k]] = k;
     s_.point.resize(m_);
     s_.point_cov.resize(m_);
     const Pose2 origin;
@@ -89,11 +91,15 @@ class TreeSearch {
   bool finish(AssociationResult& result, Pose2* pose_out) {
     result.pairing.assign(m_, kUnassigned);
     if (s_.ranked.empty()) {
-      // No verified pose (a scan with one measurement never has one): per particle, the prior decides what
-      // is left; for relocalisation, nothing is paired.
-      gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
-      if (set_.check_prior) complete_with_prior(&result.pairing);
-      finish_unpaired(s_.gating.near_any, &result.pairing);
+      // No verified pose (a scan with one measurement never has one): per particle, the prior decides;
+      // for relocalisation, nothing is paired.
+      if (set_.check_prior) {
+        complete_with_prior(&result.pairing);
+        finish_unpaired(s_.prior.near_any, &result.pairing);
+      } else {
+        gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+        finish_unpaired(s_.gating.near_any, &result.pairing);
+      }
       return false;
     }
     // Each verified hypothesis is completed with its pose; the one whose pose explains the most measurements
@@ -116,10 +122,9 @@ class TreeSearch {
       }
     }
     if (best_count < 0) {
-      // Every verified hypothesis contradicted the prior: the prior decides alone.
-      gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
+      // Every verified hypothesis contradicted the prior (only checked per particle): the prior decides alone.
       complete_with_prior(&result.pairing);
-      finish_unpaired(s_.gating.near_any, &result.pairing);
+      finish_unpaired(s_.prior.near_any, &result.pairing);
       return false;
     }
     for (int k = 0; k < m_; ++k)
@@ -127,11 +132,10 @@ class TreeSearch {
     if (set_.check_prior) {
       // Per particle, what the tree left open is paired with the prior, whose gates hold the pose
       // covariance (the completion at the fitted pose has none, so it misses pairings and starts duplicates).
-      gate_individually(p_, set_.gate2, set_.new_landmark_gate, &s_.gating, stats_);
       const std::vector<LandmarkId> tree_pairing = result.pairing;
       complete_with_prior(&result.pairing);
       if (!jointly_compatible(result.pairing)) result.pairing = tree_pairing;
-      for (int i = 0; i < m_; ++i) near_any[i] |= s_.gating.near_any[i];
+      for (int i = 0; i < m_; ++i) near_any[i] |= s_.prior.near_any[i];
     }
     s_.gating.near_any = std::move(near_any);
     finish_unpaired(s_.gating.near_any, &result.pairing);
@@ -169,12 +173,12 @@ class TreeSearch {
   // Per particle the answer must agree with the prior (consistent_with_prior), so a pairing the prior
   // puts outside even the new-landmark gate can never be part of it: the tree skips it, and tries as
   // anchors only the candidates the prediction allows.
+  // The gating is kept for the completion in finish(), which pairs within the (usually tighter) pairing gate.
   void restrict_to_prior() {
-    gate_individually(p_, set_.new_landmark_gate, set_.new_landmark_gate, &s_.gating, stats_);
-    std::vector<int> level_of(m_);
-    for (int k = 0; k < m_; ++k) level_of[s_.order[k]] = k;
+    gate_individually(p_, std::max(set_.gate2, set_.new_landmark_gate), set_.new_landmark_gate, &s_.prior, stats_);
     s_.prior_ok.assign(static_cast<std::size_t>(m_) * n_, 0);
-    for (const GatedPair& g : s_.gating.pairs) s_.prior_ok[static_cast<std::size_t>(level_of[g.measurement]) * n_ + g.candidate] = 1;
+    for (const GatedPair& g : s_.prior.pairs)
+      if (g.d2 <= set_.new_landmark_gate) s_.prior_ok[static_cast<std::size_t>(s_.rank[g.measurement]) * n_ + g.candidate] = 1;
     s_.prior_begin.assign(m_ + 1, 0);
     s_.prior_list.clear();
     for (int k = 0; k < m_; ++k) {
@@ -273,33 +277,23 @@ class TreeSearch {
   }
 
   // Gated nearest neighbour on the prior's predictions for the measurements still unassigned, over the
-  // candidates not yet taken: greedy by (Mahalanobis distance, landmark id, canonical rank), as
-  // NearestNeighbor decides. s_.gating must hold this problem's individual gating.
+  // candidates not yet taken, decided as NearestNeighbor decides (pair_greedily). Per particle only: reads
+  // the prior gating of restrict_to_prior().
   void complete_with_prior(std::vector<LandmarkId>* pairing) {
-    std::vector<int> rank(m_);
-    for (int k = 0; k < m_; ++k) rank[s_.order[k]] = k;
     std::fill(s_.used.begin(), s_.used.end(), 0);
     for (const LandmarkId id : *pairing)
       if (id >= 0) s_.used[index_of(id)] = 1;
-    std::vector<GatedPair> pairs = s_.gating.pairs;
-    std::sort(pairs.begin(), pairs.end(), [&](const GatedPair& a, const GatedPair& b) {
-      if (a.d2 != b.d2) return a.d2 < b.d2;
-      if (a.candidate != b.candidate) return a.candidate < b.candidate;  // candidates ascend by id
-      return rank[a.measurement] < rank[b.measurement];
-    });
-    for (const GatedPair& g : pairs) {
-      if ((*pairing)[g.measurement] != kUnassigned || s_.used[g.candidate]) continue;
-      (*pairing)[g.measurement] = p_.candidates[g.candidate].id;
-      s_.used[g.candidate] = 1;
-    }
+    s_.completion.clear();
+    for (const GatedPair& g : s_.prior.pairs)
+      if (g.d2 <= set_.gate2) s_.completion.push_back(g);
+    pair_greedily(p_, s_.rank, &s_.completion, &s_.used, pairing);
   }
 
+  // The joint test with the particle's own predictions; pairing is per measurement, any negative entry
+  // unpaired.
   bool jointly_compatible(const std::vector<LandmarkId>& pairing) {
-    std::vector<LandmarkId> ids(pairing);
-    for (LandmarkId& id : ids)
-      if (id < 0) id = kNewLandmark;
     ++stats_->tests;
-    return joint_compatibility(p_, ids, set_.joint_gate).compatible;
+    return joint_compatibility(p_, pairing, set_.joint_gate).compatible;
   }
 
   // Per-particle use: the pose-free answer must also pass the joint test with the particle's own predictions
@@ -309,8 +303,7 @@ class TreeSearch {
     std::vector<LandmarkId> ids(m_, kNewLandmark);
     for (int k = 0; k < m_; ++k)
       if (h[k] >= 0) ids[s_.order[k]] = p_.candidates[h[k]].id;
-    ++stats_->tests;
-    return joint_compatibility(p_, ids, set_.joint_gate).compatible;
+    return jointly_compatible(ids);
   }
 
   // A complete interpretation is verified at once (closed-form pose, joint test), and only verified ones are

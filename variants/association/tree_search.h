@@ -17,6 +17,7 @@ namespace arbor::association {
 struct TreeScratch {
   IndividualGating gating;       // fallback classification when no hypothesis is verified
   std::vector<int> order;        // level k of the tree is measurement order[k]
+  std::vector<int> rank;         // rank[i]: the level of measurement i (order's inverse)
   std::vector<Vec2> point;       // measured point per level, robot frame
   std::vector<Mat2> point_cov;   // its covariance J R J^T
   std::vector<int> loc_begin;    // locality of candidate j as candidate indices: loc[loc_begin[j] ..)
@@ -31,11 +32,14 @@ struct TreeScratch {
   std::vector<Mat2> jacobian;    // d position / d z_hat per candidate (problems with a joint covariance)
   std::vector<Vec2> fit_p, fit_q;
   std::vector<Mat2> fit_cov;
-  // Per-particle use: prior_ok[k * n + j] says candidate j lies inside the new-landmark gate of the
-  // measurement at level k under the prior (pose covariance included); prior_begin/prior_list hold those
-  // candidates per level, the anchors tried at depth 0.
+  // Per-particle use: the individual gating under the prior (pose covariance included), once per problem;
+  // prior_ok[k * n + j] says candidate j lies inside the new-landmark gate of the measurement at level k;
+  // prior_begin/prior_list hold those candidates per level, the anchors tried at depth 0; completion holds
+  // the pairs inside the pairing gate that the completion with the prior considers.
+  IndividualGating prior;
   std::vector<char> prior_ok;
   std::vector<int> prior_begin, prior_list;
+  std::vector<GatedPair> completion;
 };
 
 struct TreeSettings {
