@@ -496,20 +496,19 @@ class FastSlam {
       bool seen = false;
       for (const auto& t : touched) seen |= t.landmark.id == lm.id;
       if (seen) continue;
-      if (prune_ && expired(lm)) {
+      const auto drop = [&] {
         p.map.erase(lm.id);
-        s.erased.push_back(lm.id);
+        s.erased.push_back(lm.id);  // recorded, so the decisions can be replayed (record_decisions)
+      };
+      if (prune_ && expired(lm)) {
+        drop();
         continue;
       }
       if (!in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
       Landmark updated = lm;
       updated.log_odds = static_cast<float>(lm.log_odds - options_.log_odds_miss);
-      if (prune_ && updated.log_odds < options_.log_odds_prune) {
-        p.map.erase(lm.id);
-        s.erased.push_back(lm.id);
-      } else {
-        p.map.set(updated);
-      }
+      if (prune_ && updated.log_odds < options_.log_odds_prune) drop();
+      else p.map.set(updated);
     }
     s.nearby.clear();
   }

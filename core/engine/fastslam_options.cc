@@ -1,8 +1,8 @@
 // FastSlamOptions names and validation.
-#include <cmath>
 #include "core/engine/fastslam_options.h"
 
 #include <array>
+#include <cmath>
 #include <utility>
 
 #include <fmt/core.h>

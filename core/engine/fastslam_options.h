@@ -49,12 +49,11 @@ struct FastSlamOptions {
   double log_odds_max = 8.0;
   double log_odds_prune = 0.0;
   // Existence (Montemerlo 2003 §4; the M-of-N track confirmation of Blackman 1986, Multiple-Target Tracking
-  // with Radar Applications): a new
-  // landmark is provisional; it is confirmed once its log-odds reach log_odds_confirm (with the defaults:
-  // seen a second time before being missed), and dropped if still provisional provisional_scans scans after
-  // the one that started it (0: never dropped for that). Clutter is seen once, so it never enters the map the run reports, and it stops
-  // drawing association pairings a few scans later, even where it sits at the edge of the view and no
-  // negative evidence reaches it.
+  // with Radar Applications): a new landmark is provisional; it is confirmed once its log-odds reach
+  // log_odds_confirm (with the defaults: seen a second time before being missed), and dropped if still
+  // provisional provisional_scans scans after the one that started it (0: never dropped for that). Clutter is
+  // seen once, so it never enters the map the run reports, and it stops drawing association pairings a few
+  // scans later, even where it sits at the edge of the view and no negative evidence reaches it.
   double log_odds_confirm = 2.0;
   int provisional_scans = 10;
   // Pruning is off with known association: the ids are right by construction, so evidence only matters
