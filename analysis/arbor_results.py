@@ -2,9 +2,11 @@
 """Shared loading and plotting helpers for the analysis scripts: the one place that knows the sweep's
 result files (results.jsonl / results.csv, runs/<key>/{result.json,trajectory.tum,map.csv}, scenarios)."""
 
+import glob
 import json
 import math
 import os
+import re
 import sys
 
 import matplotlib
@@ -182,6 +184,24 @@ def save_figure(fig, out_dir, name):
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def read_study_runs(pattern, regex, fields):
+    """The result.json files of a study script's runs (glob pattern), one row each: the named groups of
+    regex, matched against the run's directory name (digits become ints), and the listed result fields.
+    Directories whose name does not match are skipped."""
+    rows = []
+    for path in sorted(glob.glob(pattern)):
+        m = re.fullmatch(regex, os.path.basename(os.path.dirname(path)))
+        if not m:
+            continue
+        with open(path, encoding="utf-8") as f:
+            r = json.load(f)
+        row = {k: (int(v) if v and v.isdigit() else v) for k, v in m.groupdict().items()}
+        for field in fields:
+            row[field] = r.get(field)
+        rows.append(row)
+    return pd.DataFrame(rows)
 
 
 # --- one run's files -------------------------------------------------------------------------------------

@@ -11,41 +11,29 @@ landmark the measurements observed, the confirmed landmarks without a true count
 Usage: /usr/bin/python3 analysis/clutter.py OUT
 Writes OUT/clutter.md, OUT/clutter.csv and OUT/clutter.png (F1, ATE ratio and map ratio against clutter).
 """
-import glob
-import json
 import os
-import re
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import markdown_table  # noqa: E402
+from arbor_results import markdown_table, read_study_runs  # noqa: E402
 
 STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
-RUN = re.compile(r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)")
+RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)"
+FIELDS = {"assoc_f1": "f1", "ate_rmse_m": "ate_m", "ate_aligned_rmse_m": "ate_aligned_m", "landmarks": "landmarks",
+          "observed_true_landmarks": "observed", "spurious_landmarks": "spurious", "wall_time_s": "wall_s"}
 
 
 def read_runs(out):
-    rows = []
-    for path in sorted(glob.glob(os.path.join(out, "runs", "*", "result.json"))):
-        m = RUN.fullmatch(os.path.basename(os.path.dirname(path)))
-        if not m:
-            continue
-        with open(path, encoding="utf-8") as f:
-            r = json.load(f)
-        rows.append({"world": m["world"], "clutter": float(m["clutter"]), "seed": int(m["seed"]),
-                     "strategy": m["strategy"], "f1": r.get("assoc_f1"), "ate_m": r.get("ate_rmse_m"),
-                     "ate_aligned_m": r.get("ate_aligned_rmse_m"),
-                     "landmarks": r.get("landmarks"), "observed": r.get("observed_true_landmarks"),
-                     "spurious": r.get("spurious_landmarks"), "wall_s": r.get("wall_time_s")})
-    df = pd.DataFrame(rows)
+    df = read_study_runs(os.path.join(out, "runs", "*", "result.json"), RUN, list(FIELDS))
     if df.empty:
         return df
+    df = df.rename(columns=FIELDS)
+    df["clutter"] = df["clutter"].astype(float)
     df["map_ratio"] = df.landmarks / df.observed
     return df
 

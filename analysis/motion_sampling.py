@@ -11,10 +11,7 @@ Usage: /usr/bin/python3 analysis/motion_sampling.py OUT
 Writes OUT/motion_sampling.md, OUT/motion_sampling_sim.csv, OUT/motion_sampling_utias.csv and
 OUT/motion_sampling.png.
 """
-import glob
-import json
 import os
-import re
 import sys
 
 import matplotlib
@@ -24,25 +21,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import markdown_table, mean_ci  # noqa: E402
+from arbor_results import markdown_table, mean_ci, read_study_runs  # noqa: E402
 
 SAMPLINGS = ["per-scan", "per-control"]
 COLORS = {"per-scan": "tab:blue", "per-control": "tab:orange"}
-
-
-def read_runs(pattern, regex, fields):
-    rows = []
-    for path in sorted(glob.glob(pattern)):
-        m = re.fullmatch(regex, os.path.basename(os.path.dirname(path)))
-        if not m:
-            continue
-        with open(path, encoding="utf-8") as f:
-            r = json.load(f)
-        row = {k: (int(v) if v and v.isdigit() else v) for k, v in m.groupdict().items()}
-        for f_ in fields:
-            row[f_] = r.get(f_)
-        rows.append(row)
-    return pd.DataFrame(rows)
 
 
 def cell(values):
@@ -52,7 +34,7 @@ def cell(values):
 
 
 def sim_section(out):
-    df = read_runs(os.path.join(out, "sim", "*", "result.json"),
+    df = read_study_runs(os.path.join(out, "sim", "*", "result.json"),
                    r"k(?P<k>\d+)-p(?P<particles>\d+)-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control)",
                    ["ate_rmse_m", "ate_aligned_rmse_m", "nees_in_band_fraction", "nees_median", "wall_time_s"])
     if df.empty:
@@ -80,7 +62,7 @@ def sim_section(out):
 
 
 def utias_section(out):
-    df = read_runs(os.path.join(out, "utias", "*", "result.json"),
+    df = read_study_runs(os.path.join(out, "utias", "*", "result.json"),
                    r"r(?P<robot>\d)-(?P<method>fastslam1|fastslam2|smoother)(?:-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control))?",
                    ["ate_rmse_m", "ate_aligned_rmse_m", "nees_in_band_fraction", "rejected_measurements", "wall_time_s"])
     if df.empty:
@@ -107,7 +89,7 @@ def utias_section(out):
 
 
 def victoria_park_section(out):
-    df = read_runs(os.path.join(out, "victoria_park", "*", "result.json"),
+    df = read_study_runs(os.path.join(out, "victoria_park", "*", "result.json"),
                    r"(?P<assoc>jcbb|nn)-p(?P<particles>\d+)-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control)",
                    ["ate_rmse_m", "landmarks", "wall_time_s"])
     if df.empty:
