@@ -10,23 +10,13 @@
 namespace arbor {
 namespace {
 
-Scenario cluttered_world(std::uint64_t seed) {
-  SimulationOptions o;
-  o.seed = o.world.seed = seed;
-  o.steps = 300;
-  o.clutter_rate = 2.0;
-  return simulate(o);
-}
+Scenario cluttered_world(std::uint64_t seed) { return testing::simulated_world(seed, 300, 2.0); }
 
 RunOutput run(const Scenario& scenario, const std::string& assoc, int threads = 1, const std::string& out = "",
               const std::string& map = "naive") {
-  RunConfig c;
+  RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 20, 1, threads);
   c.assoc = assoc;
   c.map = map;
-  c.options.version = FilterVersion::kFastSlam2;
-  c.options.particles = 20;
-  c.options.seed = 1;
-  c.options.threads = threads;
   c.out_dir = out;
   return run_fastslam(scenario, c);
 }
