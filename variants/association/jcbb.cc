@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/LU>
+
 #include "core/models/range_bearing_model.h"
 
 namespace arbor {
@@ -17,7 +19,7 @@ class JcbbSearch {
   JcbbSearch(const AssociationProblem& problem, JcbbScratch& s, const ChiSquareTable& joint_gate,
              std::int64_t max_hypotheses, AssociationStats* stats)
       : p_(problem), s_(s), joint_gate_(joint_gate), max_hypotheses_(max_hypotheses), stats_(stats),
-        levels_(static_cast<int>(problem.measurements.size())),
+        levels_(static_cast<int>(s.order.size())),
         coupled_(problem.joint_covariance.size() > 0 || !problem.P.isZero(0.0)) {}
 
   void run() {
@@ -29,7 +31,8 @@ class JcbbSearch {
     s_.L.assign(dim * dim, 0.0);
     s_.y.assign(dim, 0.0);
     s_.W.assign(dim * 2, 0.0);
-    if (coupled_ && p_.joint_covariance.size() == 0) {
+    information_form_ = coupled_ && p_.joint_covariance.size() == 0 && prepare_information_form();
+    if (coupled_ && !information_form_ && p_.joint_covariance.size() == 0) {
       s_.HP.resize(p_.candidates.size());
       for (std::size_t j = 0; j < p_.candidates.size(); ++j) s_.HP[j] = p_.candidates[j].H_pose * p_.P;
     }
@@ -37,6 +40,40 @@ class JcbbSearch {
   }
 
  private:
+  // Per-candidate terms of the information form; false (use the Cholesky form) when some individual S_j is
+  // not invertible.
+  bool prepare_information_form() {
+    const std::size_t n = p_.candidates.size();
+    s_.Sinv.resize(n);
+    s_.HtSinv.resize(n);
+    s_.HtSinvH.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const AssociationCandidate& c = p_.candidates[j];
+      if (!association::invert_spd2(0.5 * (c.S + c.S.transpose()), &s_.Sinv[j])) return false;
+      s_.HtSinv[j] = c.H_pose.transpose() * s_.Sinv[j];
+      s_.HtSinvH[j] = s_.HtSinv[j] * c.H_pose;
+    }
+    const std::size_t depths = static_cast<std::size_t>(levels_) + 1;
+    s_.info.assign(depths, Mat3::Zero());
+    s_.info_vec.assign(depths, Vec3::Zero());
+    s_.info_sum.assign(depths, 0.0);
+    return true;
+  }
+
+  // The information-form extension: writes the sums for depth + 1 and returns the new joint distance.
+  double extend_information(int depth, int k, int j, double d2) {
+    const Vec2 nu = range_bearing_innovation(p_.measurements[s_.order[k]].z, p_.candidates[j].z_hat);
+    const Mat3 J = s_.info[depth] + s_.HtSinvH[j];
+    const Vec3 b = s_.info_vec[depth] + s_.HtSinv[j] * nu;
+    const double sum = s_.info_sum[depth] + nu.dot(s_.Sinv[j] * nu);
+    const Vec3 x = (Mat3::Identity() + p_.P * J).partialPivLu().solve(p_.P * b);
+    s_.info[depth + 1] = J;
+    s_.info_vec[depth + 1] = b;
+    s_.info_sum[depth + 1] = sum;
+    // Exact arithmetic never lets D2 fall along a branch; rounding must not either (the bound relies on it).
+    return std::max(d2, sum - b.dot(x));
+  }
+
   // C(a, b) for a != b: H_a P H_b^T with G_a = H_a P precomputed once per candidate (or the given joint block).
   Mat2 cross(int a, int b) const {
     if (p_.joint_covariance.size() > 0) return p_.joint_covariance.block<2, 2>(2 * a, 2 * b);
@@ -53,6 +90,7 @@ class JcbbSearch {
       // P = 0: the joint covariance is block-diagonal, so the joint distance is the sum of the individual ones.
       return d2 + individual_d2;
     }
+    if (information_form_) return extend_information(depth, k, j, d2);
     const Vec2 nu = range_bearing_innovation(p_.measurements[s_.order[k]].z, p_.candidates[j].z_hat);
     const int n = 2 * depth;
     // B = C(paired, j); W = L^-1 B by forward substitution, O(depth^2).
@@ -186,6 +224,7 @@ class JcbbSearch {
   AssociationStats* stats_;
   int levels_;
   bool coupled_;
+  bool information_form_ = false;
   int best_pairings_ = -1;
   double best_d2_ = 0.0;
 };
@@ -203,11 +242,19 @@ void Jcbb::solve(const AssociationProblem& problem, Scratch& s, AssociationResul
   result.stats = {};
   association::gate_individually(problem, gate_, new_landmark_gate_, &s.gating, &result.stats);
   association::canonical_measurement_order(problem, &s.order);
+  // The levels of the tree: the measurements with a compatible candidate, in canonical order. A measurement
+  // without one can only stay unpaired; as a level it would only add a '*' node under every hypothesis.
+  // (Most-constrained-first ordering was measured too: no fewer nodes on the design problems, and a worse
+  // filter on the cluttered test worlds, since which prefixes must pass their joint gate changes with it.)
+  const auto count_of = [&](int i) { return s.gating.first[i + 1] - s.gating.first[i]; };
+  s.order.erase(std::remove_if(s.order.begin(), s.order.end(), [&](int i) { return count_of(i) == 0; }),
+                s.order.end());
+  const int levels = static_cast<int>(s.order.size());
   // Compatible candidates per level, most likely first so that good hypotheses are found early.
   s.list.clear();
   s.list_d2.clear();
-  s.list_begin.assign(m + 1, 0);
-  for (int k = 0; k < m; ++k) {
+  s.list_begin.assign(levels + 1, 0);
+  for (int k = 0; k < levels; ++k) {
     s.list_begin[k] = static_cast<int>(s.list.size());
     const int i = s.order[k];
     auto* begin = s.gating.pairs.data() + s.gating.first[i];
@@ -221,13 +268,13 @@ void Jcbb::solve(const AssociationProblem& problem, Scratch& s, AssociationResul
       s.list_d2.push_back(g->d2);
     }
   }
-  s.list_begin[m] = static_cast<int>(s.list.size());
+  s.list_begin[levels] = static_cast<int>(s.list.size());
 
   JcbbSearch search(problem, s, joint_gate_, max_hypotheses_, &result.stats);
   search.run();
 
   result.pairing.assign(m, association::kUnassigned);
-  for (int k = 0; k < m; ++k)
+  for (int k = 0; k < levels; ++k)
     if (s.best[k] >= 0) result.pairing[s.order[k]] = problem.candidates[s.best[k]].id;
   association::finish_unpaired(s.gating.near_any, &result.pairing);
 }
