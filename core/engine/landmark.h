@@ -1,5 +1,5 @@
 // One landmark of one particle's map: a 2x2 EKF (mean, covariance), its existence evidence, an optional
-// signature, and its locality (the landmarks seen in the same scan at least once; Ge & Lewis 2006, ch. 9).
+// signature, and its locality (the landmarks seen in the same scan most often; Ge & Lewis 2006, ch. 9).
 #ifndef ARBOR_CORE_ENGINE_LANDMARK_H_
 #define ARBOR_CORE_ENGINE_LANDMARK_H_
 
@@ -18,7 +18,13 @@ namespace arbor {
 using LandmarkId = std::int32_t;
 inline constexpr LandmarkId kNoLandmark = -1;
 
-// Covisibility set: sorted ids, capped at kCapacity. A full set keeps its lowest ids (deterministic).
+// Covisibility set: the landmarks seen in the same scan as this one most often, at most kCapacity of them,
+// kept with the Space-Saving summary (Metwally, Agrawal & El Abbadi, ICDT 2005) so that the set keeps
+// learning: a co-observation of a kept id raises its count; a new id takes a free slot, or else replaces the
+// kept id with the lowest count (ties: the highest id) and inherits that count plus one. Any id co-observed
+// more often than the lowest kept count stays in the set. Counts are 8-bit and halved together when one
+// would overflow, which keeps their order (an exponential forgetting of old co-observations). Ids stay sorted
+// so that the set, and everything built from it, is deterministic.
 class LocalitySet {
  public:
   static constexpr int kCapacity = 6;
@@ -28,30 +34,64 @@ class LocalitySet {
   const LandmarkId* begin() const { return ids_.data(); }
   const LandmarkId* end() const { return ids_.data() + count_; }
   bool contains(LandmarkId id) const { return std::binary_search(begin(), end(), id); }
+  // Co-observations counted for the id at position i (Space-Saving's estimate: an upper bound).
+  int weight(int i) const { return hits_[i]; }
 
-  // Inserts id in order; when full, a larger id than all kept ones is dropped, else the largest is evicted.
+  // One co-observation of id.
   void add(LandmarkId id) {
     LandmarkId* pos = std::lower_bound(ids_.data(), ids_.data() + count_, id);
-    if (pos != ids_.data() + count_ && *pos == id) return;
-    if (count_ == kCapacity) {
-      if (pos == ids_.data() + count_) return;
-      --count_;
+    const int at = static_cast<int>(pos - ids_.data());
+    if (at < count_ && *pos == id) {
+      raise(at);
+      return;
     }
-    std::copy_backward(pos, ids_.data() + count_, ids_.data() + count_ + 1);
-    *pos = id;
-    ++count_;
+    std::uint8_t inherited = 0;
+    if (count_ == kCapacity) {
+      int weakest = 0;
+      for (int i = 1; i < count_; ++i)
+        if (hits_[i] <= hits_[weakest]) weakest = i;  // ties: the highest id (the last in order)
+      inherited = hits_[weakest];
+      erase_at(weakest);
+      pos = std::lower_bound(ids_.data(), ids_.data() + count_, id);
+    }
+    insert_at(static_cast<int>(pos - ids_.data()), id, inherited);
+    raise(static_cast<int>(pos - ids_.data()));
   }
   void remove(LandmarkId id) {
-    LandmarkId* pos = std::lower_bound(ids_.data(), ids_.data() + count_, id);
-    if (pos == ids_.data() + count_ || *pos != id) return;
-    std::copy(pos + 1, ids_.data() + count_, pos);
-    --count_;
+    const LandmarkId* pos = std::lower_bound(begin(), end(), id);
+    if (pos != end() && *pos == id) erase_at(static_cast<int>(pos - begin()));
   }
-  bool operator==(const LocalitySet& o) const { return std::equal(begin(), end(), o.begin(), o.end()); }
+  bool operator==(const LocalitySet& o) const {
+    return count_ == o.count_ && std::equal(begin(), end(), o.begin()) &&
+           std::equal(hits_.begin(), hits_.begin() + count_, o.hits_.begin());
+  }
 
  private:
+  void raise(int i) {
+    if (hits_[i] == 255)
+      for (int k = 0; k < count_; ++k) hits_[k] = static_cast<std::uint8_t>((hits_[k] + 1) / 2);
+    ++hits_[i];
+  }
+  void insert_at(int i, LandmarkId id, std::uint8_t hits) {
+    for (int k = count_; k > i; --k) {
+      ids_[k] = ids_[k - 1];
+      hits_[k] = hits_[k - 1];
+    }
+    ids_[i] = id;
+    hits_[i] = hits;
+    ++count_;
+  }
+  void erase_at(int i) {
+    for (int k = i; k + 1 < count_; ++k) {
+      ids_[k] = ids_[k + 1];
+      hits_[k] = hits_[k + 1];
+    }
+    --count_;
+  }
+
   std::array<LandmarkId, kCapacity> ids_{};
-  std::int32_t count_ = 0;
+  std::array<std::uint8_t, kCapacity> hits_{};
+  std::uint8_t count_ = 0;
 };
 
 struct Landmark {

@@ -1,6 +1,7 @@
 // The engine's building blocks: counter-based streams, resampling, the persistent pose history, chi-square.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numeric>
 
 #include "core/engine/persistent_history.h"
@@ -97,14 +98,44 @@ TEST(ChiSquare, QuantilesMatchTables) {
   EXPECT_NEAR(table(60), chi_square_quantile(0.99, 60), 1e-12);
 }
 
-TEST(LocalitySet, StaysSortedUniqueAndKeepsTheLowestIdsWhenFull) {
+TEST(LocalitySet, StaysSortedAndUniqueWithinItsCapacity) {
   LocalitySet s;
   for (LandmarkId id : {9, 3, 7, 3, 1, 12, 5, 8, 2}) s.add(id);
   ASSERT_EQ(s.size(), LocalitySet::kCapacity);
-  EXPECT_EQ(std::vector<LandmarkId>(s.begin(), s.end()), (std::vector<LandmarkId>{1, 2, 3, 5, 7, 8}));
+  const std::vector<LandmarkId> ids(s.begin(), s.end());
+  EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+  EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end());
+  EXPECT_TRUE(s.contains(3));  // seen twice: never the weakest
   s.remove(3);
   EXPECT_FALSE(s.contains(3));
-  EXPECT_TRUE(s.contains(8));
+  EXPECT_EQ(s.size(), LocalitySet::kCapacity - 1);
+}
+
+// The set keeps learning: a landmark seen often with this one enters even after the set filled up with
+// landmarks seen once (a set that kept the first or the lowest ids would refuse it), and it stays while a
+// stream of landmarks seen once each passes through.
+TEST(LocalitySet, KeepsTheMostFrequentlyCoObservedNotTheFirst) {
+  LocalitySet s;
+  for (LandmarkId id = 1; id <= LocalitySet::kCapacity; ++id) s.add(id);
+  for (int k = 0; k < 3; ++k) s.add(50);
+  EXPECT_TRUE(s.contains(50));
+  for (int k = 0; k < 20; ++k) s.add(50);
+  for (LandmarkId id = 100; id < 140; ++id) s.add(id);
+  EXPECT_TRUE(s.contains(50));
+  EXPECT_EQ(s.size(), LocalitySet::kCapacity);
+}
+
+// Counts are 8-bit: when one would overflow, all are halved, which keeps their order.
+TEST(LocalitySet, HalvingOnOverflowKeepsTheOrderOfTheCounts) {
+  LocalitySet s;
+  for (int k = 0; k < 600; ++k) {
+    s.add(7);
+    if (k % 3 == 0) s.add(8);
+  }
+  ASSERT_EQ(s.size(), 2);
+  EXPECT_GT(s.weight(0), s.weight(1));  // ids sorted: 7 then 8
+  EXPECT_GT(s.weight(1), 0);
+  EXPECT_LE(s.weight(0), 255);
 }
 
 }  // namespace
