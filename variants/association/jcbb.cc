@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/LU>
-
 #include "core/models/range_bearing_model.h"
 
 namespace arbor {
@@ -43,35 +41,19 @@ class JcbbSearch {
   // Per-candidate terms of the information form; false (use the Cholesky form) when some individual S_j is
   // not invertible.
   bool prepare_information_form() {
-    const std::size_t n = p_.candidates.size();
-    s_.Sinv.resize(n);
-    s_.HtSinv.resize(n);
-    s_.HtSinvH.resize(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      const AssociationCandidate& c = p_.candidates[j];
-      if (!association::invert_spd2(0.5 * (c.S + c.S.transpose()), &s_.Sinv[j])) return false;
-      s_.HtSinv[j] = c.H_pose.transpose() * s_.Sinv[j];
-      s_.HtSinvH[j] = s_.HtSinv[j] * c.H_pose;
-    }
-    const std::size_t depths = static_cast<std::size_t>(levels_) + 1;
-    s_.info.assign(depths, Mat3::Zero());
-    s_.info_vec.assign(depths, Vec3::Zero());
-    s_.info_sum.assign(depths, 0.0);
+    s_.information.resize(p_.candidates.size());
+    for (std::size_t j = 0; j < p_.candidates.size(); ++j)
+      if (!association::candidate_information(p_.candidates[j], &s_.information[j])) return false;
+    s_.sums.assign(static_cast<std::size_t>(levels_) + 1, association::JointInformation{});
     return true;
   }
 
   // The information-form extension: writes the sums for depth + 1 and returns the new joint distance.
   double extend_information(int depth, int k, int j, double d2) {
     const Vec2 nu = range_bearing_innovation(p_.measurements[s_.order[k]].z, p_.candidates[j].z_hat);
-    const Mat3 J = s_.info[depth] + s_.HtSinvH[j];
-    const Vec3 b = s_.info_vec[depth] + s_.HtSinv[j] * nu;
-    const double sum = s_.info_sum[depth] + nu.dot(s_.Sinv[j] * nu);
-    const Vec3 x = (Mat3::Identity() + p_.P * J).partialPivLu().solve(p_.P * b);
-    s_.info[depth + 1] = J;
-    s_.info_vec[depth + 1] = b;
-    s_.info_sum[depth + 1] = sum;
+    s_.sums[depth + 1] = s_.sums[depth].plus(s_.information[j], nu);
     // Exact arithmetic never lets D2 fall along a branch; rounding must not either (the bound relies on it).
-    return std::max(d2, sum - b.dot(x));
+    return std::max(d2, s_.sums[depth + 1].distance(p_.P));
   }
 
   // C(a, b) for a != b: H_a P H_b^T with G_a = H_a P precomputed once per candidate (or the given joint block).

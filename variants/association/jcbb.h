@@ -9,6 +9,7 @@
 #include "core/association/association_problem.h"
 #include "core/math/chi_square.h"
 #include "variants/association/association_common.h"
+#include "variants/association/joint_information.h"
 
 namespace arbor {
 
@@ -27,13 +28,9 @@ struct JcbbScratch {
   std::vector<double> y;          // L^-1 nu: the whitened joint innovation
   std::vector<double> W;          // L^-1 B for the pairing under test (2k x 2)
   std::vector<Mat23> HP;          // H_pose_j P per candidate
-  // Information form (see Jcbb): per candidate S^-1, H^T S^-1 and H^T S^-1 H; per depth the running sums.
-  std::vector<Mat2> Sinv;
-  std::vector<Mat32> HtSinv;
-  std::vector<Mat3> HtSinvH;
-  std::vector<Mat3> info;         // info[d] = sum of H^T S^-1 H over the first d pairings
-  std::vector<Vec3> info_vec;     // info_vec[d] = sum of H^T S^-1 nu
-  std::vector<double> info_sum;   // info_sum[d] = sum of nu^T S^-1 nu
+  // Information form (see Jcbb): per candidate its terms; sums[d] over the first d pairings.
+  std::vector<association::CandidateInformation> information;
+  std::vector<association::JointInformation> sums;
 };
 
 // Depth-first branch and bound over pairings, maximising the number of paired measurements, ties broken by
@@ -41,16 +38,12 @@ struct JcbbScratch {
 //   * Levels: only the measurements with an individually compatible candidate, in canonical order.
 //   * Individual compatibility is computed once (O(m n)); only gated pairs are branched on.
 //   * Joint compatibility of H + (i, j) is tested against chi2(2k) with the joint innovation covariance
-//     C = H_x P H_x^T + blockdiag(H_j Sigma_j H_j^T + R). Its Cholesky factor grows by one 2x2 block row per
-//     pairing (O(k^2) forward substitution per node, never a refactorisation), and the joint distance grows by
-//     the squared norm of the new whitened innovation block:  D2_{k+1} = D2_k + |L22^-1 (nu - W^T y)|^2.
+//     C = H_x P H_x^T + blockdiag(H_j Sigma_j H_j^T + R), in information form (joint_information.h): running
+//     sums of fixed size, so a node costs O(1), one 3x3 solve. Where the problem gives an explicit joint
+//     covariance (or some S_j is singular), the Cholesky factor of C grows instead by one 2x2 block row per
+//     pairing (O(k^2) forward substitution per node, never a refactorisation), and the joint distance grows
+//     by the squared norm of the new whitened innovation block: D2_{k+1} = D2_k + |L22^-1 (nu - W^T y)|^2.
 //     D2 never decreases along a branch, which makes the tie-breaking bound exact.
-//   * When the joint covariance has that structure (no explicit joint covariance in the problem), the test
-//     runs in the information form instead: by the Woodbury identity, with J = sum H_i^T S_i^-1 H_i,
-//     b = sum H_i^T S_i^-1 nu_i and s = sum nu_i^T S_i^-1 nu_i over the pairings,
-//       D2 = s - b^T (P^-1 + J)^-1 b = s - b^T (I + P J)^-1 P b,
-//     three running sums of fixed size, so a node costs O(1) (a 3x3 solve) instead of O(k^2), and P need not
-//     be invertible (I + P J is, for P and J positive semi-definite).
 //   * Bound (Neira & Tardós, Fig. 2, tightened): pairings so far + levels left that still have an unused
 //     compatible candidate; a branch that cannot beat the best (more pairings, or as many with a lower D2)
 //     is pruned.

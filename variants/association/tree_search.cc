@@ -8,6 +8,7 @@
 #include "core/math/chi_square.h"
 #include "core/models/range_bearing_model.h"
 #include "variants/association/joint_compatibility.h"
+#include "variants/association/joint_information.h"
 #include "variants/association/rigid_alignment.h"
 
 namespace arbor::association {
@@ -293,6 +294,24 @@ class TreeSearch {
   // unpaired.
   bool jointly_compatible(const std::vector<LandmarkId>& pairing) {
     ++stats_->tests;
+    if (p_.joint_covariance.size() == 0) {
+      // The information form (O(k), joint_information.h): the dense form's (2k)^3 factorisation, called for
+      // every verified hypothesis of every particle, was a quarter of a locality run's time.
+      JointInformation sums;
+      CandidateInformation c;
+      int dof = 0;
+      bool structured = true;
+      for (std::size_t i = 0; i < pairing.size() && structured; ++i) {
+        if (pairing[i] < 0) continue;
+        const int j = index_of(pairing[i]);
+        if (j < 0) return false;  // not a candidate of this problem
+        const AssociationCandidate& cand = p_.candidates[j];
+        structured = candidate_information(cand, &c);
+        sums = sums.plus(c, range_bearing_innovation(p_.measurements[i].z, cand.z_hat));
+        dof += 2;
+      }
+      if (structured) return dof == 0 || sums.distance(p_.P) <= set_.joint_gate(dof);
+    }
     return joint_compatibility(p_, pairing, set_.joint_gate).compatible;
   }
 
