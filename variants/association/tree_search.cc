@@ -387,11 +387,16 @@ class TreeSearch {
     for (int k = 0; k < m_; ++k)
       if ((*h)[k] >= 0) s_.used[(*h)[k]] = 1;
     std::vector<char> near_level(m_, 0);
+    const double widest_gate = std::max(set_.new_landmark_gate, set_.gate2);
     for (int k = 0; k < m_; ++k) {
       const Vec2 w = pose->transform(s_.point[k]);
       const Mat2 cov_w = rot * s_.point_cov[k] * rot.transpose();
+      const double trace_w = s_.point_cov[k].trace();  // a rotation keeps the trace
       for (int j = 0; j < n_; ++j) {
         const Vec2 r = w - p_.candidates[j].position;
+        // r^T A^-1 r >= |r|^2 / lambda_max(A) >= |r|^2 / trace(A): far candidates are passed over without
+        // inverting A, and the bound is exact, so no decision changes.
+        if (r.squaredNorm() > widest_gate * (trace_w + p_.candidates[j].position_cov.trace())) continue;
         Mat2 inverse;
         if (!invert_spd2(cov_w + p_.candidates[j].position_cov, &inverse)) continue;
         const double d2 = r.dot(inverse * r);
