@@ -55,6 +55,9 @@ std::string FastSlamOptions::validate() const {
   if (!(q > 0.0 && q < 1.0)) return fmt::format("new-landmark probability must lie in (0, 1) (got {})", q);
   if (!(log_odds_hit > 0.0 && log_odds_miss >= 0.0)) return "log-odds hit must be positive and miss non-negative";
   if (!std::isfinite(log_odds_confirm)) return "log-odds confirmation level must be finite";
+  if (!std::isfinite(log_odds_prune)) return "log-odds pruning level must be finite";
+  if (association.max_hypotheses < 1)
+    return fmt::format("search budget (max hypotheses) must be at least 1 (got {})", association.max_hypotheses);
   if (provisional_scans < 0) return fmt::format("provisional scans must be 0 (keep) or positive (got {})", provisional_scans);
   if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
   const double k = association.known_gate_probability;

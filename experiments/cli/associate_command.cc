@@ -11,6 +11,7 @@
 #include "core/io/input_error.h"
 #include "core/metrics/association_score.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/numeric_options.h"
 #include "variants/association/joint_compatibility.h"
 #include "core/metrics/association_score.h"
 #include "variants/association/problem_generator.h"
@@ -102,18 +103,23 @@ void add_associate_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--assoc", args->assoc, fmt::format("Strategy: {}", fmt::join(standalone_strategy_names(), ", ")))
       ->capture_default_str();
   cmd->add_option("--chi2", args->chi2, "Gate probability of the chi-square tests (individual and joint)")
+      ->check(open_probability())
       ->capture_default_str();
   cmd->add_option("--new-landmark-chi2", args->new_landmark_chi2,
                   "An unpaired observation outside this gate of every prediction is NEW, else SPURIOUS")
+      ->check(open_probability())
       ->capture_default_str();
   cmd->add_option("--max-hypotheses", args->max_hypotheses, "Search budget of JCBB and the interpretation trees")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--truth", args->truth, "Ground-truth file (one id or -1 per observation): also print a score line");
   cmd->add_flag("--generate", args->generate, "Write a random problem with known pairings to --out");
   cmd->add_option("--landmarks", args->gen.landmarks, "Generator: landmarks N (all are predictions)")->capture_default_str();
   cmd->add_option("--observations", args->gen.observations, "Generator: true observations M")->capture_default_str();
   cmd->add_option("--clutter", args->gen.clutter, "Generator: spurious observations")->capture_default_str();
-  cmd->add_option("--seed", args->gen.seed, "Generator: random seed")->capture_default_str();
+  cmd->add_option("--seed", args->gen.seed, "Generator: random seed")
+      ->check(unsigned_number())
+      ->capture_default_str();
   cmd->add_option("--density", args->gen.density, "Generator: landmarks per m^2")->capture_default_str();
   cmd->add_option("--range-sigma", args->gen.range_sigma, "Generator: range noise [m]")->capture_default_str();
   cmd->add_option("--bearing-sigma", args->gen.bearing_sigma, "Generator: bearing noise [rad]")->capture_default_str();

@@ -138,7 +138,8 @@ void add_convert_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--max-gps-speed", options->max_gps_speed,
                   "Victoria Park, Car Park: drop GPS fixes that imply more than this speed [m/s] from the last kept fix "
                   "(GPS jumps; 0 keeps every fix). The ute's top speed in the data is 6.6 m/s")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->callback([options, action] { *action = [options] { return run_convert(*options); }; });
 }
 

@@ -15,6 +15,7 @@
 #include "core/io/input_error.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/numeric_options.h"
 #include "experiments/sim/world.h"
 #include "variants/association/strategy_list.h"
 
@@ -225,7 +226,9 @@ void add_relocalize_command(CLI::App& app, CommandAction* action) {
       ->capture_default_str();
   cmd->add_option("--clutter", args->clutter, "Expected spurious measurements per scan (Poisson)")->capture_default_str();
   cmd->add_option("--trials", args->trials, "Kidnappings")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Random seed (world and trials)")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed (world and trials)")
+      ->check(unsigned_number())
+      ->capture_default_str();
   cmd->add_option("--jump-m", args->jump_m, "Position jump of the kidnapping [m]")->capture_default_str();
   cmd->add_option("--jump-rad", args->jump_rad, "Heading jump of the kidnapping [rad]")->capture_default_str();
   cmd->add_option("--map-sigma", args->map_sigma_m, "Std dev of the known map's landmark estimates [m]")

@@ -5,6 +5,7 @@
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/numeric_options.h"
 #include "experiments/run/fastslam_run.h"
 #include "variants/registry.h"
 
@@ -29,7 +30,9 @@ void add_run_command(CLI::App& app, CommandAction* action) {
                               fmt::join(association_names(), ", ")))
       ->capture_default_str();
   cmd->add_option("--particles", config->options.particles, "Number of particles M")->capture_default_str();
-  cmd->add_option("--seed", config->options.seed, "Seed of every random draw of the filter")->capture_default_str();
+  cmd->add_option("--seed", config->options.seed, "Seed of every random draw of the filter")
+      ->check(unsigned_number())
+      ->capture_default_str();
   cmd->add_option("--threads", config->options.threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
   cmd->add_option("--resample-threshold", config->options.resample_threshold,

@@ -5,6 +5,7 @@
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/numeric_options.h"
 #include "experiments/sim/simulator.h"
 
 namespace arbor::cli {
@@ -50,7 +51,9 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
                   "to where it was at half that time, and drive on from there")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--signatures", options->signatures, "Report a noisy scalar signature with each measurement");
-  cmd->add_option("--seed", options->seed, "Seed of the world and of all noise")->capture_default_str();
+  cmd->add_option("--seed", options->seed, "Seed of the world and of all noise")
+      ->check(unsigned_number())
+      ->capture_default_str();
   cmd->add_option("--out", *out, "Scenario file to write")->required();
   *action = nullptr;
   cmd->callback([=] {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <utility>
 
 #include "test_support.h"
 
@@ -40,6 +41,36 @@ TEST(Cli, UnknownVariantAndMissingFileExitTwo) {
   EXPECT_NE(missing.output.find("/nonexistent.scn"), std::string::npos) << missing.output;
   const auto bad_option = run_command(testing::arbor_binary() + " simulate --landmarks -5 --out /tmp/x.scn");
   EXPECT_EQ(bad_option.exit_code, 2) << bad_option.output;
+}
+
+// Every numeric option of every subcommand is checked in one place (experiments/cli/numeric_options.h):
+// before, each of these was accepted (a NaN, an infinity, or a seed of -1 read as 2^64 - 1), and the
+// probabilities aborted the process inside the chi-square quantile.
+TEST(Cli, NonFiniteNegativeSeedsAndImpossibleProbabilitiesExitTwoNamingTheOption) {
+  const std::string dir = testing::scratch_dir("cli_numbers");
+  ASSERT_EQ(run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out " + dir + "/w.scn").exit_code, 0);
+  const std::string run = testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out " + dir + "/r ";
+  const std::string associate = testing::arbor_binary() + " associate --generate --out " + dir + "/p.txt ";
+  const std::pair<std::string, std::string> cases[] = {
+      {run + "--seed -1", "--seed"},
+      {run + "--prune nan", "--prune"},
+      {run + "--chi2 inf", "--chi2"},
+      {run + "--resample-threshold 1e999", "--resample-threshold"},
+      {testing::arbor_binary() + " simulate --clutter nan --out " + dir + "/x.scn", "--clutter"},
+      {testing::arbor_binary() + " relocalize --seed -3", "--seed"},
+      {associate + "--new-landmark-chi2 2", "--new-landmark-chi2"},
+      {associate + "--chi2 nan", "--chi2"},
+      {associate + "--max-hypotheses -5", "--max-hypotheses"},
+  };
+  for (const auto& [command, option] : cases) {
+    const auto r = run_command(command);
+    EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find(option), std::string::npos) << command << "\n" << r.output;
+  }
+  EXPECT_FALSE(std::ifstream(dir + "/r/result.json").good());
+  // Every form strtod reads stays accepted, hex floats included.
+  const auto hex = run_command(run + "--particles 5 --prune 0x1p-2");
+  EXPECT_EQ(hex.exit_code, 0) << hex.output;
 }
 
 TEST(Cli, HelpExplainsEveryRunOption) {

@@ -1,0 +1,69 @@
+// The finite-number and unsigned checks shared by every subcommand's options.
+#include "experiments/cli/numeric_options.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+namespace arbor::cli {
+namespace {
+
+// True when text is one number, nothing else (strtod's forms, hex floats included), and finite.
+bool finite_number(const std::string& text) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && errno != ERANGE && std::isfinite(value);
+}
+
+// True when text reads as a number at all, finite or not ("nan", "inf", "1e999").
+bool any_number(const std::string& text) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+
+const CLI::Validator kFinite(
+    [](std::string& value) {
+      return any_number(value) && !finite_number(value) ? "must be a finite number (got " + value + ")"
+                                                        : std::string();
+    },
+    "", "finite");
+
+void add_checks(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_expected_max() == 0) continue;  // a flag
+    if (finite_number(option->get_default_str())) option->check(kFinite);
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) add_checks(*sub);
+}
+
+}  // namespace
+
+const CLI::Validator& unsigned_number() {
+  static const CLI::Validator check(
+      [](std::string& value) {
+        return value.find('-') == 0 ? "must not be negative (got " + value + ")" : std::string();
+      },
+      "", "unsigned");
+  return check;
+}
+
+const CLI::Validator& open_probability() {
+  static const CLI::Validator check(
+      [](std::string& value) {
+        char* end = nullptr;
+        const double p = std::strtod(value.c_str(), &end);
+        if (value.empty() || end != value.c_str() + value.size()) return std::string();  // the type check says it
+        return p > 0.0 && p < 1.0 ? std::string() : "must lie strictly between 0 and 1 (got " + value + ")";
+      },
+      "", "probability");
+  return check;
+}
+
+void require_finite_numbers(CLI::App& app) { add_checks(app); }
+
+}  // namespace arbor::cli
