@@ -2,6 +2,8 @@
 #include "core/io/scenario_format.h"
 
 #include <cmath>
+#include <unordered_map>
+#include <utility>
 
 #include <fmt/core.h>
 
@@ -80,7 +82,14 @@ Scenario read_scenario(const std::string& path) {
                        "re-create the file with this build's `arbor simulate` or `arbor convert`");
   if (version != kVersion) in.fail("version", fmt::format("unsupported version (this build reads {})", kVersion));
 
-  bool have_sensor = false, have_motion = false, have_initial = false, ended = false;
+  // The line of each one-off line (0: not yet seen); a second one would silently replace the first.
+  int motion_line = 0, sensor_line = 0, initial_line = 0;
+  bool ended = false;
+  const auto once = [&](int* seen, std::string_view what) {
+    if (*seen > 0) in.fail(what, fmt::format("a second '{}' line (the first is line {})", what, *seen));
+    *seen = in.line_number();
+  };
+  std::unordered_map<std::int32_t, int> landmark_line;  // truth landmark id -> the line that gave it
   int scan_expected = 0;  // measurements still owed by the current scan
   int scan_line = 0;
   double last_time = -INFINITY;
@@ -117,7 +126,7 @@ Scenario read_scenario(const std::string& path) {
     need_no_pending_scan(kind);
     if (kind == "step") {
       in.expect_fields(5, 5, "step");
-      if (!have_motion || !have_sensor || !have_initial)
+      if (motion_line == 0 || sensor_line == 0 || initial_line == 0)
         in.fail("step", "the 'motion', 'sensor' and 'initial' lines must come before the first step");
       ScenarioStep step;
       step.time_s = in.number(1, "time");
@@ -144,6 +153,8 @@ Scenario read_scenario(const std::string& path) {
       in.expect_fields(4, 4, "landmark");
       const std::int64_t id = in.integer(1, "id");
       if (id < 0 || id > INT32_MAX) in.fail("id", "landmark id must be a non-negative 32-bit integer");
+      const auto [first, inserted] = landmark_line.emplace(static_cast<std::int32_t>(id), in.line_number());
+      if (!inserted) in.fail("id", fmt::format("landmark {} is listed twice (first at line {})", id, first->second));
       s.truth_landmarks.push_back({static_cast<std::int32_t>(id), {in.number(2, "x"), in.number(3, "y")}});
     } else if (kind == "gps") {
       in.expect_fields(4, 4, "gps");
@@ -152,12 +163,15 @@ Scenario read_scenario(const std::string& path) {
       s.truth_track.push_back({t, {in.number(2, "x"), in.number(3, "y")}});
     } else if (kind == "motion") {
       in.expect_fields(2, 8, "motion");
+      once(&motion_line, "motion");
       read_motion(in, &s.motion);
-      have_motion = true;
     } else if (kind == "sensor") {
       in.expect_fields(7, 7, "sensor");
+      once(&sensor_line, "sensor");
       s.sensor.max_range_m = non_negative(in, 1, "max_range");
       s.sensor.min_range_m = non_negative(in, 2, "min_range");
+      if (s.sensor.min_range_m > s.sensor.max_range_m)
+        in.fail("min_range", fmt::format("min_range {} exceeds max_range {}", s.sensor.min_range_m, s.sensor.max_range_m));
       s.sensor.fov_rad = non_negative(in, 3, "fov");
       if (s.sensor.fov_rad > 2.0 * kPi + 1e-9) in.fail("fov", "field of view larger than 2 pi");
       s.sensor.sigma_range_m = in.number(4, "sigma_range");
@@ -165,14 +179,13 @@ Scenario read_scenario(const std::string& path) {
       s.sensor.sigma_bearing_rad = in.number(5, "sigma_bearing");
       if (s.sensor.sigma_bearing_rad <= 0.0) in.fail("sigma_bearing", "must be positive");
       if (in.field(6) != "-") s.sensor.sigma_signature = non_negative(in, 6, "sigma_signature");
-      have_sensor = true;
     } else if (kind == "initial") {
       in.expect_fields(8, 8, "initial");
+      once(&initial_line, "initial");
       s.start_time_s = in.number(1, "time");
       last_time = s.start_time_s;
       s.initial_pose = {in.number(2, "x"), in.number(3, "y"), wrap_angle(in.number(4, "theta"))};
       s.initial_sigma = {non_negative(in, 5, "sigma_x"), non_negative(in, 6, "sigma_y"), non_negative(in, 7, "sigma_theta")};
-      have_initial = true;
     } else if (kind == "meta") {
       in.expect_fields(2, 1000, "meta");
       std::string value;
@@ -192,6 +205,9 @@ Scenario read_scenario(const std::string& path) {
   if (scan_expected > 0)
     throw InputError(path, in.line_number(), "z", fmt::format("file ends inside the scan at line {}: {} measurement(s) missing", scan_line, scan_expected));
   if (!ended) throw InputError(path, in.line_number(), "end", "file ends without its 'end N' line (truncated?)");
+  // A file without steps never reached the check at its first step.
+  for (const auto& [line, what] : {std::pair{motion_line, "motion"}, {sensor_line, "sensor"}, {initial_line, "initial"}})
+    if (line == 0) throw InputError(path, in.line_number(), what, fmt::format("the file has no '{}' line", what));
   return s;
 }
 

@@ -3,6 +3,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 #include <fmt/core.h>
 
@@ -10,6 +12,8 @@ namespace arbor {
 
 TextReader::TextReader(std::string path, std::string_view separators, char comment_char)
     : path_(std::move(path)), separators_(separators), comment_char_(comment_char), in_(path_) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path_, error)) throw InputError(path_, 0, "", "is a directory, not a file");
   if (!in_) throw InputError(path_, 0, "", "cannot open file for reading");
 }
 
@@ -56,8 +60,21 @@ void TextReader::expect_fields(std::size_t min, std::size_t max, std::string_vie
 
 bool parse_finite_double(std::string_view text, double* value) {
   if (text.empty()) return false;
-  if (text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
+  bool negative = false;
+  if (text.front() == '+' || text.front() == '-') {
+    negative = text.front() == '-';
+    text.remove_prefix(1);
+  }
+  // Every form strtod reads (docs/scenario_format.md), hex floats included; from_chars wants those without
+  // their 0x prefix.
+  auto format = std::chars_format::general;
+  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+    text.remove_prefix(2);
+    format = std::chars_format::hex;
+  }
+  if (text.empty() || text.front() == '+' || text.front() == '-') return false;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), *value, format);
+  if (negative) *value = -*value;
   return ec == std::errc() && end == text.data() + text.size() && std::isfinite(*value);
 }
 

@@ -3,9 +3,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
+#include "core/io/text_reader.h"
 
 namespace arbor {
 namespace {
@@ -127,11 +131,51 @@ INSTANTIATE_TEST_SUITE_P(
                       Malformed{"missing_measurement", "z 4.2 -3 - clutter", "<cut>", 0, "z"},
                       Malformed{"missing_end", "end", "<cut>", 0, "end"},
                       Malformed{"bad_truth_id", "z 4.2 -3 0.25 7", "z 4.2 -3 0.25 seven", -1, "truth"},
-                      Malformed{"wrong_header", "arbor-scenario", "arbor-scenery 1", 1, "header"}),
+                      Malformed{"wrong_header", "arbor-scenario", "arbor-scenery 1", 1, "header"},
+                      // A second one-off line used to replace the first silently; a landmark listed twice
+                      // was counted twice.
+                      Malformed{"second_motion", "landmark 0", "motion velocity 0.1 0.1 0 0 0", -1, "motion"},
+                      Malformed{"second_sensor", "landmark 0", "sensor 20 0 3 0.1 0.01 -", -1, "sensor"},
+                      Malformed{"second_initial", "landmark 0", "initial 0 0 0 0 0.1 0.1 0.01", -1, "initial"},
+                      Malformed{"landmark_twice", "landmark 7", "landmark 0 5 5", -1, "id"},
+                      Malformed{"min_above_max_range", "sensor", "sensor 10 20 3 0.1 0.01 -", -1, "min_range"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(ScenarioFormat, MissingFileIsAnInputError) {
   EXPECT_THROW(read_scenario("/nonexistent/dir/x.scn"), InputError);
+}
+
+TEST(ScenarioFormat, ADirectoryIsNamedAsOne) {
+  try {
+    read_scenario(std::filesystem::temp_directory_path().string());
+    FAIL() << "read a directory as a scenario";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+}
+
+// A header and an end line are not a scenario: without steps, the check at the first step never ran.
+TEST(ScenarioFormat, AFileWithoutMotionSensorOrInitialLinesIsRefused) {
+  const std::string path = temp_path("header_only.scn");
+  std::ofstream(path) << "arbor-scenario 2\nend 0\n";
+  try {
+    read_scenario(path);
+    FAIL() << "accepted a scenario with no motion, sensor or initial line";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "motion") << e.what();
+  }
+}
+
+// docs/scenario_format.md promises every form strtod reads; from_chars alone refused hex floats.
+TEST(ScenarioFormat, NumbersReadEveryStrtodFormButNonFiniteOnes) {
+  double v = 0.0;
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, double>>{
+           {"0x1p-2", 0.25}, {"-0X1.8p1", -3.0}, {"+2.5", 2.5}, {"1e-3", 1e-3}, {"-0", 0.0}}) {
+    ASSERT_TRUE(parse_finite_double(text, &v)) << text;
+    EXPECT_EQ(v, expected) << text;
+  }
+  for (const std::string text : {"nan", "inf", "-inf", "1e999", "0x", "--1", "+-1", "0x-1", "1.5x", ""})
+    EXPECT_FALSE(parse_finite_double(text, &v)) << text;
 }
 
 }  // namespace
