@@ -15,11 +15,12 @@ class InputError : public std::runtime_error {
   // line = 0 means the error concerns the whole file (missing, empty) or an option; field may be empty.
   InputError(std::string file, int line, std::string field, const std::string& message)
       : std::runtime_error(format(file, line, field, message)), file_(std::move(file)), line_(line),
-        field_(std::move(field)) {}
+        field_(std::move(field)), message_(message) {}
 
   const std::string& file() const { return file_; }
   int line() const { return line_; }
   const std::string& field() const { return field_; }
+  const std::string& message() const { return message_; }  // what() without the location
 
  private:
   static std::string format(const std::string& file, int line, const std::string& field, const std::string& message) {
@@ -31,6 +32,7 @@ class InputError : public std::runtime_error {
   std::string file_;
   int line_;
   std::string field_;
+  std::string message_;
 };
 
 }  // namespace arbor

@@ -138,11 +138,38 @@ INSTANTIATE_TEST_SUITE_P(
                       Malformed{"second_sensor", "landmark 0", "sensor 20 0 3 0.1 0.01 -", -1, "sensor"},
                       Malformed{"second_initial", "landmark 0", "initial 0 0 0 0 0.1 0.1 0.01", -1, "initial"},
                       Malformed{"landmark_twice", "landmark 7", "landmark 0 5 5", -1, "id"},
-                      Malformed{"min_above_max_range", "sensor", "sensor 10 20 3 0.1 0.01 -", -1, "min_range"}),
+                      Malformed{"min_above_max_range", "sensor", "sensor 10 20 3 0.1 0.01 -", -1, "min_range"},
+                      // Outside the format's physical limits (scenario_limits): a denormal sigma made the
+                      // engine abort on a singular covariance; 1e300 overflows when squared.
+                      Malformed{"denormal_sigma_range", "sensor", "sensor 20 0 3 1e-310 0.01 -", -1, "sigma_range"},
+                      Malformed{"huge_control", "step 0.2", "step 0.2 1e300 0.2 0.1", -1, "u1"},
+                      Malformed{"far_landmark", "landmark 7", "landmark 7 1e200 0", -1, "x"},
+                      Malformed{"huge_noise_density", "motion", "motion velocity 1e300 0 0 0 0", -1, "q_v"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(ScenarioFormat, MissingFileIsAnInputError) {
   EXPECT_THROW(read_scenario("/nonexistent/dir/x.scn"), InputError);
+}
+
+// A writer never emits a file its reader rejects: it reads its text back first, and writes nothing when
+// that fails (before: `simulate --sigma-range 0` wrote a scenario no command could read).
+TEST(ScenarioFormat, TheWriterRefusesWhatTheReaderWouldReject) {
+  const std::string dir = temp_path("writer_check");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  Scenario s = small_scenario();
+  s.sensor.sigma_range_m = 0.0;
+  try {
+    write_scenario(s, dir + "/bad.scn");
+    FAIL() << "wrote a scenario with sigma_range 0";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), dir + "/bad.scn");
+    EXPECT_EQ(e.field(), "sigma_range") << e.what();
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));  // neither the file nor its temporary
+  s.sensor.sigma_range_m = 0.1;
+  write_scenario(s, dir + "/good.scn");
+  EXPECT_EQ(read_scenario(dir + "/good.scn").sensor.sigma_range_m, 0.1);
 }
 
 TEST(ScenarioFormat, ADirectoryIsNamedAsOne) {
