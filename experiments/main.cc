@@ -7,7 +7,7 @@
 
 #include "core/io/input_error.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/numeric_options.h"
+#include "experiments/cli/option_checks.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Arbor: a benchmark and research framework for landmark-based SLAM (FastSLAM 1.0/2.0)."};
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
 #endif
   arbor::cli::add_sweep_command(app, &action);
   arbor::cli::add_merge_command(app, &action);
-  arbor::cli::require_finite_numbers(app);
+  arbor::cli::apply_common_option_checks(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

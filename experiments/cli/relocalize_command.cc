@@ -15,7 +15,7 @@
 #include "core/io/input_error.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/numeric_options.h"
+#include "experiments/cli/option_checks.h"
 #include "experiments/sim/world.h"
 #include "variants/association/strategy_list.h"
 

@@ -5,7 +5,7 @@
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/numeric_options.h"
+#include "experiments/cli/option_checks.h"
 #include "experiments/run/fastslam_run.h"
 #include "variants/registry.h"
 

@@ -43,10 +43,10 @@ TEST(Cli, UnknownVariantAndMissingFileExitTwo) {
   EXPECT_EQ(bad_option.exit_code, 2) << bad_option.output;
 }
 
-// Every numeric option of every subcommand is checked in one place (experiments/cli/numeric_options.h):
-// before, each of these was accepted (a NaN, an infinity, or a seed of -1 read as 2^64 - 1), and the
-// probabilities aborted the process inside the chi-square quantile.
-TEST(Cli, NonFiniteNegativeSeedsAndImpossibleProbabilitiesExitTwoNamingTheOption) {
+// Every option of every subcommand is checked in one place (experiments/cli/option_checks.h):
+// before, each of these was accepted (a NaN, an infinity, a seed of -1 read as 2^64 - 1, an empty output
+// path), and the probabilities aborted the process inside the chi-square quantile.
+TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) {
   const std::string dir = testing::scratch_dir("cli_numbers");
   ASSERT_EQ(run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out " + dir + "/w.scn").exit_code, 0);
   const std::string run = testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out " + dir + "/r ";
@@ -61,6 +61,8 @@ TEST(Cli, NonFiniteNegativeSeedsAndImpossibleProbabilitiesExitTwoNamingTheOption
       {associate + "--new-landmark-chi2 2", "--new-landmark-chi2"},
       {associate + "--chi2 nan", "--chi2"},
       {associate + "--max-hypotheses -5", "--max-hypotheses"},
+      {testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out ''", "--out"},
+      {testing::arbor_binary() + " simulate --out ''", "--out"},
   };
   for (const auto& [command, option] : cases) {
     const auto r = run_command(command);

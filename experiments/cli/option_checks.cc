@@ -1,5 +1,5 @@
-// The finite-number and unsigned checks shared by every subcommand's options.
-#include "experiments/cli/numeric_options.h"
+// The checks shared by every subcommand's options.
+#include "experiments/cli/option_checks.h"
 
 #include <cerrno>
 #include <cmath>
@@ -33,9 +33,14 @@ const CLI::Validator kFinite(
     },
     "", "finite");
 
+const CLI::Validator kNonEmpty(
+    [](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); }, "",
+    "non-empty");
+
 void add_checks(CLI::App& app) {
   for (CLI::Option* option : app.get_options()) {
     if (option->get_expected_max() == 0) continue;  // a flag
+    option->check(kNonEmpty);
     if (finite_number(option->get_default_str())) option->check(kFinite);
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) add_checks(*sub);
@@ -64,6 +69,6 @@ const CLI::Validator& open_probability() {
   return check;
 }
 
-void require_finite_numbers(CLI::App& app) { add_checks(app); }
+void apply_common_option_checks(CLI::App& app) { add_checks(app); }
 
 }  // namespace arbor::cli

@@ -1,0 +1,26 @@
+// Rules for every option of every subcommand, applied in one place (main.cc) instead of per option:
+//   * no option takes an empty value (`run --out ""` printed "wrote /result.json" and wrote nothing);
+//   * a number must be finite (CLI11 reads "nan" and "inf" into a double, and its Range validators let NaN
+//     through, since every comparison with NaN is false);
+//   * an unsigned one has no minus sign (CLI11 reads "-1" into an unsigned 64-bit seed as 2^64 - 1).
+// Ranges stay with each option.
+#ifndef ARBOR_EXPERIMENTS_CLI_OPTION_CHECKS_H_
+#define ARBOR_EXPERIMENTS_CLI_OPTION_CHECKS_H_
+
+#include <CLI/CLI.hpp>
+
+namespace arbor::cli {
+
+// For an unsigned option (seeds, counts): refuses a value with a leading minus sign.
+const CLI::Validator& unsigned_number();
+
+// For a probability that feeds a chi-square quantile: strictly inside (0, 1).
+const CLI::Validator& open_probability();
+
+// Walks every option of app and its subcommands: each gets the non-empty check, and one whose default value
+// is a finite number the finite-number check. Call after every subcommand is added and before parsing.
+void apply_common_option_checks(CLI::App& app);
+
+}  // namespace arbor::cli
+
+#endif  // ARBOR_EXPERIMENTS_CLI_OPTION_CHECKS_H_
