@@ -75,7 +75,10 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
       if (!from_string(*solver, &config->options.linear_solver))
         throw InputError("", 0, "solver", "unknown solver " + *solver);
       const SmoothOutput out = run_smoother(*config);
-      if (*quiet) return 0;
+      // A solve that ended unusable is a failure (exit 1) with or without the summary on stdout.
+      if (!out.smoother.summary.usable)
+        fmt::print(stderr, "arbor: failed: the solve ended unusable ({})\n", out.smoother.summary.termination);
+      if (*quiet) return out.smoother.summary.usable ? 0 : 1;
       const auto& r = out.result;
       const auto show = [](const nlohmann::json& v) {
         return v.is_null() ? std::string("n/a") : fmt::format("{:.4g}", v.get<double>());
