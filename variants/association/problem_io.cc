@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <string_view>
+#include <system_error>
 
 #include <Eigen/Cholesky>
 #include <fmt/core.h>
@@ -30,14 +33,21 @@ void require_line(TextReader& in, std::string_view what) {
   if (!in.next()) throw InputError(in.path(), in.line_number() + 1, std::string(what), "unexpected end of file");
 }
 
-// "<keyword> <count>" with a non-negative count.
-int read_count(TextReader& in, std::string_view keyword) {
+// "<keyword> <count>" with a non-negative count. A count promises lines: it is checked against the bytes
+// the file holds, at least bytes_per_item(count) for the items it announces, before anything is allocated for
+// them (a 64-byte file that declared 10^7 predictions reached 1.9 GB before it failed).
+template <class BytesPerItem>
+int read_count(TextReader& in, std::string_view keyword, std::uintmax_t file_bytes, BytesPerItem bytes_for) {
   require_line(in, keyword);
   if (in.field(0) != keyword)
     in.fail(std::string(keyword), fmt::format("expected '{} COUNT', found '{}'", keyword, in.field(0)));
   in.expect_fields(2, 2, keyword);
-  const std::int64_t count = in.integer(1, fmt::format("{} count", keyword));
-  if (count < 0 || count > 10'000'000) in.fail(fmt::format("{} count", keyword), "must be in [0, 1e7]");
+  const std::string field = fmt::format("{} count", keyword);
+  const std::int64_t count = in.integer(1, field);
+  if (count < 0 || count > 10'000'000) in.fail(field, "must be in [0, 1e7]");
+  const double needed = bytes_for(static_cast<double>(count));
+  if (needed > static_cast<double>(file_bytes))
+    in.fail(field, fmt::format("{} {} need at least {:.0f} bytes; the file has {}", count, keyword, needed, file_bytes));
   return static_cast<int>(count);
 }
 
@@ -59,7 +69,11 @@ AssociationProblem read_association_problem(const std::string& path) {
   if (in.field(0) != kMagic) in.fail("header", fmt::format("expected '{} {}'", kMagic, kVersion));
   if (in.integer(1, "version") != kVersion) in.fail("version", fmt::format("only version {} is known", kVersion));
 
-  const int m = read_count(in, "observations");
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
+  // An observation line is at least "r phi\n" (4 bytes); a prediction line "id r phi\n" (6 bytes) and its two
+  // covariance rows of 2n numbers (2 bytes each with the separator).
+  const int m = read_count(in, "observations", file_bytes, [](double k) { return 4.0 * k; });
   problem.measurements.resize(m);
   for (int i = 0; i < m; ++i) {
     require_line(in, "observation");
@@ -67,7 +81,7 @@ AssociationProblem read_association_problem(const std::string& path) {
     problem.measurements[i].z = read_range_bearing(in, 0);
   }
 
-  const int n = read_count(in, "predictions");
+  const int n = read_count(in, "predictions", file_bytes, [](double k) { return 6.0 * k + 8.0 * k * k; });
   std::vector<AssociationCandidate> file_order(n);
   std::vector<int> lines(n);
   for (int j = 0; j < n; ++j) {
