@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 
 #include "core/io/atomic_file.h"
+#include "core/io/directory_lock.h"
 #include "core/io/input_error.h"
 #include "experiments/sweep/results_log.h"
 #include "experiments/sweep/sweep_manifest.h"
@@ -46,6 +47,7 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
     ++summary.inputs;
   }
   std::filesystem::create_directories(out);
+  const DirectoryLock lock(out);  // no sweep or other merge writes it meanwhile
   if (const auto existing = read_manifest(out); existing && existing->spec_hash != first->spec_hash)
     throw InputError(out + "/" + kSweepManifest, 0, "spec_hash", "the output directory holds another sweep");
   std::vector<ResultRow> rows;

@@ -22,6 +22,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/build_info.h"
+#include "core/io/directory_lock.h"
 #include "core/io/input_error.h"
 #include "experiments/sweep/child_process.h"
 #include "experiments/sweep/results_log.h"
@@ -250,8 +251,10 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     return summary;
   }
 
-  // Refuse to mix grids: the directory's manifest must match this spec and shard.
+  // One process writes a directory at a time, whatever its spec (the lock lives until the sweep returns);
+  // then the directory's manifest must match this spec and shard.
   fs::create_directories(out);
+  const DirectoryLock lock(out);
   if (const auto existing = read_manifest(out)) {
     if (existing->spec_hash != spec.hash)
       throw InputError(out + "/" + kSweepManifest, 0, "spec_hash",

@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 #include <gtest/gtest.h>
 
+#include "core/io/directory_lock.h"
 #include "experiments/sweep/results_log.h"
 #include "tests/experiments/sweep_test_util.h"
 
@@ -160,6 +161,22 @@ TEST_F(SweepEndToEnd, MergeRefusesShardsOfDifferentSpecs) {
   EXPECT_NE(read_text(dir / "m.log").find("another spec"), std::string::npos) << read_text(dir / "m.log");
   // Resuming into a directory of another sweep is refused the same way.
   EXPECT_EQ(run_to_end({binary_, "sweep", dir / "other.toml", "--out", *scratch_ / "reference"}, dir / "r.log"), 2);
+}
+
+// Two processes never write one --out: while one holds the directory (here this test, as the binary sees
+// it), a sweep into it exits 2 before writing anything, whatever its spec.
+TEST_F(SweepEndToEnd, ASecondProcessIntoTheSameOutIsRefused) {
+  ScratchDir dir("locked");
+  std::filesystem::create_directories(dir / "out");
+  {
+    const DirectoryLock held(dir / "out");
+    EXPECT_EQ(run_to_end({binary_, "sweep", spec(), "--out", dir / "out"}, dir / "locked.log"), 2);
+    EXPECT_NE(read_text(dir / "locked.log").find("another process"), std::string::npos) << read_text(dir / "locked.log");
+    EXPECT_FALSE(std::filesystem::exists(dir / "out/sweep.json"));
+  }
+  // Released (as when the other process ends, however it ends): the same command runs.
+  EXPECT_EQ(run_to_end({binary_, "sweep", spec(), "--out", dir / "out", "--jobs", "2"}, dir / "free.log"), 0)
+      << read_text(dir / "free.log");
 }
 
 TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
