@@ -16,15 +16,17 @@
 namespace arbor {
 namespace {
 
-void write_all(int fd, std::string_view text, const std::string& path) {
+// Writes all of text; false (errno set) when the system refuses (a full disk, a quota).
+bool write_all(int fd, std::string_view text) {
   while (!text.empty()) {
     const ssize_t n = ::write(fd, text.data(), text.size());
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw InputError(path, 0, "", fmt::format("write failed: {}", std::strerror(errno)));
+      return false;
     }
     text.remove_prefix(static_cast<std::size_t>(n));
   }
+  return ::fsync(fd) == 0 || errno == EINVAL;  // EINVAL: a special file (a pipe, /dev/null) cannot sync
 }
 
 }  // namespace
@@ -34,12 +36,19 @@ void write_file_atomically(const std::string& path, std::string_view text) {
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
   const std::string temp = fmt::format("{}.tmp.{}", path, ::getpid());
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) throw InputError(path, 0, "", fmt::format("cannot write: {}", std::strerror(errno)));
-  write_all(fd, text, path);
-  ::fsync(fd);
+  if (fd < 0) throw EnvironmentError(path, fmt::format("cannot write: {}", std::strerror(errno)));
+  const bool written = write_all(fd, text);
+  const int write_error = errno;
   ::close(fd);
-  if (std::rename(temp.c_str(), path.c_str()) != 0)
-    throw InputError(path, 0, "", fmt::format("cannot rename into place: {}", std::strerror(errno)));
+  if (!written) {
+    ::unlink(temp.c_str());  // a failed write leaves no temporary behind
+    throw EnvironmentError(path, fmt::format("write failed: {}", std::strerror(write_error)));
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    const int rename_error = errno;
+    ::unlink(temp.c_str());
+    throw EnvironmentError(path, fmt::format("cannot rename into place: {}", std::strerror(rename_error)));
+  }
 }
 
 void forget_finished_run(const std::string& out_dir) {
@@ -47,15 +56,16 @@ void forget_finished_run(const std::string& out_dir) {
   std::error_code error;
   const std::filesystem::path result = std::filesystem::path(out_dir) / "result.json";
   std::filesystem::remove(result, error);
-  if (error) throw InputError(result.string(), 0, "", fmt::format("cannot remove the previous run's result: {}", error.message()));
+  if (error) throw EnvironmentError(result.string(), fmt::format("cannot remove the previous run's result: {}", error.message()));
 }
 
 void append_line_durably(const std::string& path, std::string_view text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  if (fd < 0) throw InputError(path, 0, "", fmt::format("cannot append: {}", std::strerror(errno)));
-  write_all(fd, text, path);
-  ::fsync(fd);
+  if (fd < 0) throw EnvironmentError(path, fmt::format("cannot append: {}", std::strerror(errno)));
+  const bool written = write_all(fd, text);
+  const int write_error = errno;
   ::close(fd);
+  if (!written) throw EnvironmentError(path, fmt::format("append failed: {}", std::strerror(write_error)));
 }
 
 }  // namespace arbor

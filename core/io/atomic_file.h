@@ -8,7 +8,7 @@
 namespace arbor {
 
 // Replaces path's contents with text; readers see either the old file or the new one, never a mix.
-// Throws InputError when the directory cannot be written.
+// Throws EnvironmentError (exit 1) when it cannot be written, and leaves no temporary file behind.
 void write_file_atomically(const std::string& path, std::string_view text);
 
 // A run's output directory: result.json is written last, so its presence marks a finished run. A rerun
@@ -17,7 +17,7 @@ void write_file_atomically(const std::string& path, std::string_view text);
 void forget_finished_run(const std::string& out_dir);
 
 // Appends text (one or more complete lines) with a single write() on an O_APPEND descriptor followed by
-// fsync, so a killed process leaves either the whole row or none of it.
+// fsync, so a killed process leaves either the whole row or none of it. Throws EnvironmentError on failure.
 void append_line_durably(const std::string& path, std::string_view text);
 
 }  // namespace arbor

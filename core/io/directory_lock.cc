@@ -15,14 +15,14 @@ namespace arbor {
 DirectoryLock::DirectoryLock(const std::string& dir) {
   const std::string path = dir + "/.lock";
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw InputError(path, 0, "", std::string("cannot open the directory's lock file: ") + std::strerror(errno));
+  if (fd_ < 0) throw EnvironmentError(path, std::string("cannot open the directory's lock file: ") + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     ::close(fd_);
     fd_ = -1;
     if (error == EWOULDBLOCK)
       throw InputError(dir, 0, "", "another process is writing this directory (a sweep or merge into the same --out)");
-    throw InputError(path, 0, "", std::string("cannot lock the directory: ") + std::strerror(error));
+    throw EnvironmentError(path, std::string("cannot lock the directory: ") + std::strerror(error));
   }
 }
 

@@ -1,5 +1,7 @@
-// The one exception type of Arbor: bad input or options, with the file, line and field that were wrong.
-// Thrown only at the input boundary (readers, loaders, CLI); main() prints it and exits with status 2.
+// Arbor's two exception types. InputError: bad input or options, with the file, line and field that were
+// wrong; thrown only at the input boundary (readers, loaders, CLI); main() prints it and exits with status 2.
+// EnvironmentError: the input was fine but the machine failed us (a full disk, a file that cannot be
+// written); main() exits with status 1, as for every other failure.
 #ifndef ARBOR_CORE_IO_INPUT_ERROR_H_
 #define ARBOR_CORE_IO_INPUT_ERROR_H_
 
@@ -33,6 +35,11 @@ class InputError : public std::runtime_error {
   int line_;
   std::string field_;
   std::string message_;
+};
+
+class EnvironmentError : public std::runtime_error {
+ public:
+  EnvironmentError(const std::string& path, const std::string& message) : std::runtime_error(path + ": " + message) {}
 };
 
 }  // namespace arbor

@@ -75,6 +75,13 @@ TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) 
   EXPECT_EQ(hex.exit_code, 0) << hex.output;
 }
 
+// Exit 1, not 2, when the input is fine but the output cannot be written (/proc takes no new files).
+TEST(Cli, AnUnwritableOutputExitsOneNotTwo) {
+  const auto r = run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out /proc/arbor_cli_test.scn");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("/proc/arbor_cli_test.scn"), std::string::npos) << r.output;
+}
+
 TEST(Cli, HelpExplainsEveryRunOption) {
   const auto help = run_command(testing::arbor_binary() + " run --help");
   EXPECT_EQ(help.exit_code, 0);
