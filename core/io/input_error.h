@@ -28,7 +28,8 @@ class InputError : public std::runtime_error {
   static std::string format(const std::string& file, int line, const std::string& field, const std::string& message) {
     std::string where = file;
     if (line > 0) where += fmt::format(":{}", line);
-    if (!field.empty()) where += fmt::format(": field '{}'", field);
+    // An option has no file: "field 'x': ...", not ": field 'x': ...".
+    if (!field.empty()) where += fmt::format("{}field '{}'", where.empty() ? "" : ": ", field);
     return where.empty() ? message : where + ": " + message;
   }
   std::string file_;

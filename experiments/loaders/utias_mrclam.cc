@@ -42,7 +42,8 @@ std::vector<TruthLandmark> read_landmarks(const std::string& path, const std::se
   while (in.next()) {
     in.expect_fields(5, 5, "landmark ground truth");
     const std::int64_t id = in.integer(0, "subject");
-    if (!subjects.count(static_cast<std::int32_t>(id)))
+    // Checked as read: a cast first made 4294967302 the subject 6.
+    if (id < 1 || id > INT32_MAX || !subjects.count(static_cast<std::int32_t>(id)))
       in.fail("subject", fmt::format("landmark subject {} has no barcode in Barcodes.dat", id));
     landmarks.push_back({static_cast<std::int32_t>(id), {in.number(1, "x"), in.number(2, "y")}});
     in.number(3, "x_std");

@@ -70,6 +70,11 @@ TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) 
     EXPECT_NE(r.output.find(option), std::string::npos) << command << "\n" << r.output;
   }
   EXPECT_FALSE(std::ifstream(dir + "/r/result.json").good());
+  // An option error has no file, and its message does not start with an empty one (": field ...").
+  const auto zero = run_command(run + "--particles 0");
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("arbor: error: field 'options': particles must be at least 1"), std::string::npos)
+      << zero.output;
   // Every form strtod reads stays accepted, hex floats included.
   const auto hex = run_command(run + "--particles 5 --prune 0x1p-2");
   EXPECT_EQ(hex.exit_code, 0) << hex.output;

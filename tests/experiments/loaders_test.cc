@@ -278,6 +278,11 @@ TEST(UtiasMrclam, BrokenCopiesGiveErrorsNamingFileLineAndField) {
     c.replace_line("Barcodes.dat", 6, "  2 \t   5");  // barcode 5 twice
     expect_input_error([&] { load_utias_mrclam(c.dir(), {}, &report); }, "Barcodes.dat", 6, "barcode");
   }
+  {  // 2^32 + 6: a cast before the check read it as subject 6
+    BrokenCopy c(kTestData + "utias_mrclam");
+    c.replace_line("Landmark_Groundtruth.dat", 5, "  4294967302 \t 0.588 \t -4.282 \t 0.00004 \t 0.00027");
+    expect_input_error([&] { load_utias_mrclam(c.dir(), {}, &report); }, "Landmark_Groundtruth.dat", 5, "subject");
+  }
   {  // a robot the dataset does not have
     UtiasOptions o;
     o.robot = 7;
