@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "core/io/input_error.h"
@@ -221,6 +222,23 @@ const std::vector<std::string>& known_worlds() {
   return names;
 }
 
+const std::vector<std::string>& known_metrics() {
+  // tests/experiments/sweep_spec_test.cc checks this list against the result.json of a real run and solve.
+  static const std::vector<std::string> names{
+      // arbor run
+      "assoc_f1", "assoc_precision", "assoc_recall", "ate_aligned", "ate_aligned_rmse_m", "ate_mean_rmse_m",
+      "ate_rmse_m", "budget_exhausted", "compatibility_tests", "dead_reckoning_ate_m", "hypotheses",
+      "landmark_rmse_m", "landmarks", "map_bytes_per_particle", "map_shared_fraction", "n_eff_mean",
+      "nees_in_band_fraction", "nees_mean", "nees_median", "observed_true_landmarks", "peak_rss_bytes",
+      "provisional_landmarks", "rejected_measurements", "resamples", "scenario_duration_s", "spurious_landmarks",
+      "step_time_median_s", "step_time_p95_s", "steps", "true_landmarks", "wall_time_s",
+      // arbor smooth only
+      "associations_used", "build_time_s", "factors", "final_cost", "gradient_max_norm", "initial_cost",
+      "iterations", "linear_solver_used", "marginals_time_s", "parameters", "pose_marginals", "poses", "residuals",
+      "solution_usable", "solve_cpu_s", "solve_time_s", "termination"};
+  return names;
+}
+
 std::vector<std::string> default_metrics(bool with_smoother) {
   // DESIGN.md §9's fields, then the engine statistics `arbor run` adds (absent ones are recorded as null).
   std::vector<std::string> m{"ate_rmse_m",         "landmark_rmse_m", "nees_mean",      "assoc_precision",
@@ -299,6 +317,9 @@ SweepSpec read_sweep_spec(const std::string& path) {
       for (const auto& m : in.names(*n, "sweep.metrics", {})) {
         if (m.empty() || !std::all_of(m.begin(), m.end(), [](char c) { return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_'; }))
           in.fail(line_of(*n), "sweep.metrics", fmt::format("'{}' is not a result.json field name", m));
+        if (std::find(known_metrics().begin(), known_metrics().end(), m) == known_metrics().end())
+          in.fail(line_of(*n), "sweep.metrics",
+                  fmt::format("'{}' is not a field of result.json (known: {})", m, fmt::join(known_metrics(), ", ")));
         if (std::find(spec.metrics.begin(), spec.metrics.end(), m) == spec.metrics.end()) spec.metrics.push_back(m);
       }
       explicit_metrics = true;

@@ -62,6 +62,9 @@ const std::vector<std::string>& known_filters();
 const std::vector<std::string>& known_maps();
 const std::vector<std::string>& known_assocs();
 const std::vector<std::string>& known_worlds();
+// The scalar fields of result.json a sweep can keep as metrics: those of `arbor run`, then those only
+// `arbor smooth` writes. A name outside this list is a typo (it used to give a column of nulls).
+const std::vector<std::string>& known_metrics();
 
 // 64-bit FNV-1a as 16 hex digits; stable across machines and builds.
 std::string stable_hash(std::string_view text);

@@ -7,6 +7,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/io/input_error.h"
 #include "experiments/sweep/results_log.h"
@@ -17,6 +18,7 @@ namespace arbor {
 namespace {
 
 using testing_util::ScratchDir;
+using testing_util::read_text;
 using testing_util::write_text;
 
 constexpr const char* kGoodSpec = R"(# a small grid
@@ -222,6 +224,38 @@ TEST(SweepSpec, MissingFieldsAndTyposAreRejected) {
   e = error_of(dir, "[scenarios]\ndatasets = [\"no/such/file.scn\"]\n[grid]\nfilter = \"fastslam1\"\n");
   EXPECT_EQ(e.line(), 2);
   EXPECT_EQ(e.field(), "scenarios.datasets");
+}
+
+// A metric name outside result.json used to give a column of nulls; the list the spec checks against is
+// exactly the scalar fields a run and a solve write, so it cannot drift from them.
+TEST(SweepSpec, MetricsAreTheScalarFieldsOfResultJson) {
+  ScratchDir dir("metrics");
+  std::string typo = kGoodSpec;
+  typo.replace(typo.find("name = \"unit\""), 13, "name = \"unit\"\nmetrics = [\"ate_rmse\"]");
+  EXPECT_EQ(error_of(dir, typo).field(), "sweep.metrics");
+
+  const std::string exe = testing_util::arbor_binary();
+  if (exe.empty()) GTEST_SKIP() << "ARBOR_BINARY_DIR/bin/arbor not found";
+  ASSERT_EQ(testing_util::run_to_end({exe, "simulate", "--landmarks", "30", "--steps", "20", "--out", dir / "w.scn"},
+                                     dir / "sim.log"), 0);
+  std::set<std::string> written;
+  const auto scalar_keys = [&](const std::string& result) {
+    const nlohmann::json json = nlohmann::json::parse(read_text(result));
+    for (const auto& [key, value] : json.items())
+      if (!value.is_object() && !value.is_array()) written.insert(key);
+  };
+  ASSERT_EQ(testing_util::run_to_end({exe, "run", "--scenario", dir / "w.scn", "--particles", "5", "--quiet", "--out",
+                                      dir / "run"}, dir / "run.log"), 0);
+  scalar_keys(dir / "run/result.json");
+  std::set<std::string> known(known_metrics().begin(), known_metrics().end());
+#ifdef ARBOR_HAVE_SMOOTHER
+  ASSERT_EQ(testing_util::run_to_end({exe, "smooth", "--scenario", dir / "w.scn", "--quiet", "--out", dir / "smooth"},
+                                     dir / "smooth.log"), 0);
+  scalar_keys(dir / "smooth/result.json");
+  EXPECT_EQ(known, written);
+#else
+  for (const auto& key : written) EXPECT_TRUE(known.count(key)) << key;
+#endif
 }
 
 TEST(ResultRows, ATrailingPartialLineIsNotARowAndIsCutOnResume) {
