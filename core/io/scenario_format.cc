@@ -164,7 +164,8 @@ Scenario read_scenario(const std::string& path) {
       if (s.steps.empty()) in.fail("scan", "scan before the first step");
       if (s.steps.back().has_scan) in.fail("scan", "a step has at most one scan");
       const std::int64_t n = in.integer(1, "count");
-      if (n < 0 || n > 1'000'000) in.fail("count", fmt::format("bad measurement count {}", n));
+      if (n < 0 || n > lim::kMaxMeasurementsPerScan)
+        in.fail("count", fmt::format("measurement count {} is outside [0, {}]", n, lim::kMaxMeasurementsPerScan));
       s.steps.back().has_scan = true;
       s.steps.back().measurements.reserve(n);
       scan_expected = static_cast<int>(n);

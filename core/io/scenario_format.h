@@ -23,6 +23,7 @@ inline constexpr double kMaxSigma = 1e3;           // any standard deviation [m,
 inline constexpr double kMaxNoiseDensity = 1e6;    // motion noise densities
 inline constexpr double kMaxControl = 1e6;         // |u| of each control field
 inline constexpr double kMaxSignature = 1e6;       // |signature|
+inline constexpr int kMaxMeasurementsPerScan = 10'000;  // a budget: every strategy's work grows with it
 }  // namespace scenario_limits
 
 // Throws InputError naming file, line and field on anything malformed: truncation, non-numeric or

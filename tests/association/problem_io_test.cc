@@ -105,7 +105,8 @@ INSTANTIATE_TEST_SUITE_P(
         Malformed{"truncated", HEADER "# comment\nobservations 2\n5 0\n", 5, "observation"},
         // A count the file's bytes cannot hold fails before anything is allocated for it.
         Malformed{"count_beyond_the_file", HEADER "observations 0\npredictions 10000000\n", 3, "predictions count"},
-        Malformed{"observations_beyond_the_file", HEADER "observations 9000000\n", 2, "observations count"},
+        Malformed{"observations_beyond_the_file", HEADER "observations 9000\n", 2, "observations count"},
+        Malformed{"observations_beyond_the_budget", HEADER "observations 20000\n", 2, "observations count"},
         Malformed{"short_line", HEADER "observations 1\n5\n", 3, "#2"},
         Malformed{"duplicate_id", HEADER "observations 0\npredictions 2\n1 5 0\n1 6 0\ncovariance\n"
                                   "1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n", 5, "id"},

@@ -144,7 +144,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Malformed{"denormal_sigma_range", "sensor", "sensor 20 0 3 1e-310 0.01 -", -1, "sigma_range"},
                       Malformed{"huge_control", "step 0.2", "step 0.2 1e300 0.2 0.1", -1, "u1"},
                       Malformed{"far_landmark", "landmark 7", "landmark 7 1e200 0", -1, "x"},
-                      Malformed{"huge_noise_density", "motion", "motion velocity 1e300 0 0 0 0", -1, "q_v"}),
+                      Malformed{"huge_noise_density", "motion", "motion velocity 1e300 0 0 0 0", -1, "q_v"},
+                      Malformed{"scan_beyond_the_budget", "scan 3", "scan 20000", -1, "count"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(ScenarioFormat, MissingFileIsAnInputError) {

@@ -25,14 +25,18 @@ class JcbbSearch {
     s_.best.assign(levels_, -1);
     s_.used.assign(p_.candidates.size(), 0);
     s_.paired.resize(levels_);
-    const std::size_t dim = 2 * static_cast<std::size_t>(levels_);
-    s_.L.assign(dim * dim, 0.0);
-    s_.y.assign(dim, 0.0);
-    s_.W.assign(dim * 2, 0.0);
     information_form_ = coupled_ && p_.joint_covariance.size() == 0 && prepare_information_form();
-    if (coupled_ && !information_form_ && p_.joint_covariance.size() == 0) {
-      s_.HP.resize(p_.candidates.size());
-      for (std::size_t j = 0; j < p_.candidates.size(); ++j) s_.HP[j] = p_.candidates[j].H_pose * p_.P;
+    if (coupled_ && !information_form_) {
+      // Only the Cholesky form needs the (2m)^2 factor: allocated for it alone (20k measurements would ask
+      // for 12.8 GB).
+      const std::size_t dim = 2 * static_cast<std::size_t>(levels_);
+      s_.L.assign(dim * dim, 0.0);
+      s_.y.assign(dim, 0.0);
+      s_.W.assign(dim * 2, 0.0);
+      if (p_.joint_covariance.size() == 0) {
+        s_.HP.resize(p_.candidates.size());
+        for (std::size_t j = 0; j < p_.candidates.size(); ++j) s_.HP[j] = p_.candidates[j].H_pose * p_.P;
+      }
     }
     search(0, 0, 0.0);
   }

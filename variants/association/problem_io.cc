@@ -16,6 +16,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
 #include "core/io/text_reader.h"
 #include "core/math/angles.h"
 #include "core/models/range_bearing_model.h"
@@ -37,14 +38,15 @@ void require_line(TextReader& in, std::string_view what) {
 // the file holds, at least bytes_per_item(count) for the items it announces, before anything is allocated for
 // them (a 64-byte file that declared 10^7 predictions reached 1.9 GB before it failed).
 template <class BytesPerItem>
-int read_count(TextReader& in, std::string_view keyword, std::uintmax_t file_bytes, BytesPerItem bytes_for) {
+int read_count(TextReader& in, std::string_view keyword, std::int64_t max_count, std::uintmax_t file_bytes,
+               BytesPerItem bytes_for) {
   require_line(in, keyword);
   if (in.field(0) != keyword)
     in.fail(std::string(keyword), fmt::format("expected '{} COUNT', found '{}'", keyword, in.field(0)));
   in.expect_fields(2, 2, keyword);
   const std::string field = fmt::format("{} count", keyword);
   const std::int64_t count = in.integer(1, field);
-  if (count < 0 || count > 10'000'000) in.fail(field, "must be in [0, 1e7]");
+  if (count < 0 || count > max_count) in.fail(field, fmt::format("{} is outside [0, {}]", count, max_count));
   const double needed = bytes_for(static_cast<double>(count));
   if (needed > static_cast<double>(file_bytes))
     in.fail(field, fmt::format("{} {} need at least {:.0f} bytes; the file has {}", count, keyword, needed, file_bytes));
@@ -73,7 +75,10 @@ AssociationProblem read_association_problem(const std::string& path) {
   const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
   // An observation line is at least "r phi\n" (4 bytes); a prediction line "id r phi\n" (6 bytes) and its two
   // covariance rows of 2n numbers (2 bytes each with the separator).
-  const int m = read_count(in, "observations", file_bytes, [](double k) { return 4.0 * k; });
+  // Observations: the scan budget of the scenario format (every strategy's work grows with it). Predictions:
+  // bounded by the bytes their dense covariance needs.
+  const int m = read_count(in, "observations", scenario_limits::kMaxMeasurementsPerScan, file_bytes,
+                           [](double k) { return 4.0 * k; });
   problem.measurements.resize(m);
   for (int i = 0; i < m; ++i) {
     require_line(in, "observation");
@@ -81,7 +86,7 @@ AssociationProblem read_association_problem(const std::string& path) {
     problem.measurements[i].z = read_range_bearing(in, 0);
   }
 
-  const int n = read_count(in, "predictions", file_bytes, [](double k) { return 6.0 * k + 8.0 * k * k; });
+  const int n = read_count(in, "predictions", 10'000'000, file_bytes, [](double k) { return 6.0 * k + 8.0 * k * k; });
   std::vector<AssociationCandidate> file_order(n);
   std::vector<int> lines(n);
   for (int j = 0; j < n; ++j) {
