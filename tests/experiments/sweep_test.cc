@@ -149,6 +149,11 @@ TEST_F(SweepEndToEnd, ThreeMergedShardsEqualTheUnshardedSweep) {
   merge.insert(merge.end(), {"--out", dir / "merged"});
   ASSERT_EQ(run_to_end(merge, dir / "merge.log"), 0) << read_text(dir / "merge.log");
   EXPECT_EQ(rows_of(dir / "merged"), reference());
+  // Merging in steps gives the same rows: a merge into an earlier merge keeps that merge's rows.
+  ASSERT_EQ(run_to_end({binary_, "merge", dir / "shard0", dir / "shard1", "--out", dir / "stepwise"}, dir / "s1.log"), 0);
+  ASSERT_EQ(run_to_end({binary_, "merge", dir / "shard2", "--out", dir / "stepwise"}, dir / "s2.log"), 0)
+      << read_text(dir / "s2.log");
+  EXPECT_EQ(rows_of(dir / "stepwise"), reference());
 }
 
 TEST_F(SweepEndToEnd, MergeRefusesShardsOfDifferentSpecs) {
