@@ -9,7 +9,8 @@
 namespace arbor::cli {
 namespace {
 
-// True when text is one number, nothing else (strtod's forms, hex floats included), and finite.
+// True when text is one number, nothing else (strtod's forms, hex floats included), and finite. strtod, not
+// the readers' parse_finite_double: CLI11 takes " 1" as a number, so this check must too.
 bool finite_number(const std::string& text) {
   if (text.empty()) return false;
   char* end = nullptr;
@@ -37,15 +38,6 @@ const CLI::Validator kNonEmpty(
     [](std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); }, "",
     "non-empty");
 
-void add_checks(CLI::App& app) {
-  for (CLI::Option* option : app.get_options()) {
-    if (option->get_expected_max() == 0) continue;  // a flag
-    option->check(kNonEmpty);
-    if (finite_number(option->get_default_str())) option->check(kFinite);
-  }
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) add_checks(*sub);
-}
-
 }  // namespace
 
 const CLI::Validator& unsigned_number() {
@@ -69,6 +61,13 @@ const CLI::Validator& open_probability() {
   return check;
 }
 
-void apply_common_option_checks(CLI::App& app) { add_checks(app); }
+void apply_common_option_checks(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_expected_max() == 0) continue;  // a flag
+    option->check(kNonEmpty);
+    if (finite_number(option->get_default_str())) option->check(kFinite);
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) apply_common_option_checks(*sub);
+}
 
 }  // namespace arbor::cli
