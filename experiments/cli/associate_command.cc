@@ -110,7 +110,7 @@ void add_associate_command(CLI::App& app, CommandAction* action) {
       ->check(open_probability())
       ->capture_default_str();
   cmd->add_option("--max-hypotheses", args->max_hypotheses, "Search budget of JCBB and the interpretation trees")
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("--truth", args->truth, "Ground-truth file (one id or -1 per observation): also print a score line");
   cmd->add_flag("--generate", args->generate, "Write a random problem with known pairings to --out");

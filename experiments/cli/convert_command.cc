@@ -8,6 +8,7 @@
 #include "core/io/scenario_format.h"
 #include "core/metrics/gps_jumps.h"
 #include "experiments/cli/commands.h"
+#include "experiments/cli/option_checks.h"
 #include "experiments/loaders/acfr_car_park.h"
 #include "experiments/loaders/isam_victoria_park.h"
 #include "experiments/loaders/noise_estimation.h"
@@ -122,7 +123,7 @@ void add_convert_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--input", options->input,
                   "Dataset directory (victoria-park, utias-mrclam, acfr-car-park) or file (isam); default: the copy "
                   "shipped in data/");
-  cmd->add_option("--robot", options->robot, "UTIAS MRCLAM: which robot (subject number, 1-5)")->check(CLI::PositiveNumber);
+  cmd->add_option("--robot", options->robot, "UTIAS MRCLAM: which robot (subject number, 1-5)")->check(at_least(1));
   cmd->add_option("--out", options->out, "Scenario file to write")->required();
   cmd->add_flag("--estimate-noise", options->estimate_noise,
                 "UTIAS, Car Park: estimate measurement and motion noise from ground truth (the standard "
@@ -133,12 +134,12 @@ void add_convert_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--noise-window", options->noise_window_s,
                   "UTIAS --estimate-noise: length [s] of the replayed motion windows (the command errors are correlated "
                   "in time, so the density grows with the window; choose about the time between scans)")
-      ->check(CLI::Range(0.05, 60.0))
+      ->check(within(0.05, 60.0))
       ->capture_default_str();
   cmd->add_option("--max-gps-speed", options->max_gps_speed,
                   "Victoria Park, Car Park: drop GPS fixes that imply more than this speed [m/s] from the last kept fix "
                   "(GPS jumps; 0 keeps every fix). The ute's top speed in the data is 6.6 m/s")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->callback([options, action] { *action = [options] { return run_convert(*options); }; });
 }

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace arbor::cli {
 namespace {
 
@@ -59,6 +61,37 @@ const CLI::Validator& open_probability() {
       },
       "", "probability");
   return check;
+}
+
+namespace {
+
+// The value as a double when text is one number; the type check reports anything else.
+bool read_number(const std::string& text, double* value) {
+  char* end = nullptr;
+  *value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size();
+}
+
+}  // namespace
+
+CLI::Validator at_least(double minimum) {
+  return CLI::Validator(
+      [minimum](std::string& text) {
+        double value = 0.0;
+        if (!read_number(text, &value) || value >= minimum) return std::string();
+        return fmt::format("must be at least {:g} (got {})", minimum, text);
+      },
+      fmt::format(">= {:g}", minimum), "at_least");
+}
+
+CLI::Validator within(double minimum, double maximum) {
+  return CLI::Validator(
+      [minimum, maximum](std::string& text) {
+        double value = 0.0;
+        if (!read_number(text, &value) || (value >= minimum && value <= maximum)) return std::string();
+        return fmt::format("must lie in [{:g}, {:g}] (got {})", minimum, maximum, text);
+      },
+      fmt::format("in [{:g}, {:g}]", minimum, maximum), "within");
 }
 
 void apply_common_option_checks(CLI::App& app) {

@@ -17,6 +17,11 @@ const CLI::Validator& unsigned_number();
 // For a probability that feeds a chi-square quantile: strictly inside (0, 1).
 const CLI::Validator& open_probability();
 
+// Range checks whose messages print the bounds as written ("must be at least 0 (got -1)"); CLI11's own
+// NonNegativeNumber and PositiveNumber print the largest double in full, 309 digits.
+CLI::Validator at_least(double minimum);
+CLI::Validator within(double minimum, double maximum);
+
 // Walks every option of app and its subcommands: each gets the non-empty check, and one whose default value
 // is a finite number the finite-number check. Call after every subcommand is added and before parsing.
 void apply_common_option_checks(CLI::App& app);

@@ -56,17 +56,17 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       ->check(CLI::IsMember({"gaussian", "student-t"}))
       ->capture_default_str();
   cmd->add_option("--student-dof", config->options.student_dof, "Degrees of freedom of the Student-t likelihood")
-      ->check(CLI::Range(0.1, 1e6))
+      ->check(within(0.1, 1e6))
       ->capture_default_str();
   cmd->add_option("--known-gate", config->options.association.known_gate_probability,
                   "With --assoc known, reject (and count) a measurement outside this chi-square gate of the landmark "
                   "its id names; 1 disables the gate")
-      ->check(CLI::Range(1e-6, 1.0))
+      ->check(within(1e-6, 1.0))
       ->capture_default_str();
   cmd->add_option("--max-hypotheses", config->options.association.max_hypotheses,
                   "Search budget of JCBB and the interpretation trees per particle and scan; a search that reaches it "
                   "answers with its best hypothesis so far and is counted in result.json budget_exhausted")
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("--prune", config->options.log_odds_prune, "Drop landmarks whose existence log-odds fall below this")
       ->capture_default_str();
@@ -77,7 +77,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--provisional-scans", config->options.provisional_scans,
                   "Drop a landmark still provisional this many scans after the one that started it (0: never); not "
                   "with --assoc known")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
       ->required();

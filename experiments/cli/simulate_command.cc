@@ -49,7 +49,7 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--kidnap", options->kidnap_time_s,
                   "Kidnapped robot: at the first scan at or after this time [s], carry the robot unseen by its odometer "
                   "to where it was at half that time, and drive on from there")
-      ->check(CLI::NonNegativeNumber);
+      ->check(at_least(0));
   cmd->add_flag("--signatures", options->signatures, "Report a noisy scalar signature with each measurement");
   cmd->add_option("--seed", options->seed, "Seed of the world and of all noise")
       ->check(unsigned_number())

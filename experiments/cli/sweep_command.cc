@@ -2,6 +2,7 @@
 #include <fmt/core.h>
 
 #include "experiments/cli/commands.h"
+#include "experiments/cli/option_checks.h"
 #include "experiments/sweep/sweep_runner.h"
 #include "experiments/sweep/sweep_spec.h"
 
@@ -23,7 +24,7 @@ void add_sweep_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--out", options->sweep.out_dir, "Results directory (created; reused to resume)")->required();
   cmd->add_option("--jobs,-j", options->sweep.jobs,
                   "Runs in parallel (default: the spec's 'jobs', else cores / the largest thread count)")
-      ->check(CLI::Range(1, 1024));
+      ->check(within(1, 1024));
   cmd->add_option("--shard", options->shard,
                   "Run only shard I of N (0 <= I < N): grid positions i with i mod N == I, in the sorted grid. "
                   "Give each shard its own --out and join them with `arbor merge`")
