@@ -4,7 +4,10 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <signal.h>
+
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -29,11 +32,29 @@ bool write_all(int fd, std::string_view text) {
   return ::fsync(fd) == 0 || errno == EINVAL;  // EINVAL: a special file (a pipe, /dev/null) cannot sync
 }
 
+// Removes path's temporaries (path.tmp.PID) that a killed writer left: those whose process is gone. A live
+// writer's temporary stays (a pid reused by another process only keeps a stale file a while longer).
+void remove_orphaned_temporaries(const std::filesystem::path& target) {
+  const std::string prefix = target.filename().string() + ".tmp.";
+  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    pid_t pid = 0;
+    const char* digits = name.c_str() + prefix.size();
+    const auto [end, parsed] = std::from_chars(digits, name.c_str() + name.size(), pid);
+    if (parsed != std::errc() || *end != '\0' || pid <= 0) continue;
+    if (::kill(pid, 0) != 0 && errno == ESRCH) std::filesystem::remove(entry.path(), error);
+  }
+}
+
 }  // namespace
 
 void write_file_atomically(const std::string& path, std::string_view text) {
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
+  remove_orphaned_temporaries(target);
   const std::string temp = fmt::format("{}.tmp.{}", path, ::getpid());
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) throw EnvironmentError(path, fmt::format("cannot write: {}", std::strerror(errno)));

@@ -8,7 +8,8 @@
 namespace arbor {
 
 // Replaces path's contents with text; readers see either the old file or the new one, never a mix.
-// Throws EnvironmentError (exit 1) when it cannot be written, and leaves no temporary file behind.
+// Throws EnvironmentError (exit 1) when it cannot be written, and leaves no temporary file behind. A
+// temporary that a killed writer left (path.tmp.PID, its process gone) is removed by the next write of path.
 void write_file_atomically(const std::string& path, std::string_view text);
 
 // A run's output directory: result.json is written last, so its presence marks a finished run. A rerun

@@ -31,33 +31,14 @@ std::string truth_text(std::int32_t id) {
 
 namespace lim = scenario_limits;
 
-// Field i within [lo, hi] (the limits are documented in docs/scenario_format.md).
-double within(const TextReader& in, std::size_t i, std::string_view name, double lo, double hi) {
-  const double v = in.number(i, name);
-  if (v < lo || v > hi) in.fail(name, fmt::format("{} is outside the format's limits [{}, {}]", v, lo, hi));
-  return v;
-}
-
-double non_negative(const TextReader& in, std::size_t i, std::string_view name, double hi) {
-  const double v = in.number(i, name);
-  if (v < 0.0) in.fail(name, fmt::format("must not be negative, got {}", v));
-  if (v > hi) in.fail(name, fmt::format("{} exceeds the format's limit {}", v, hi));
-  return v;
-}
-
-double coordinate(const TextReader& in, std::size_t i, std::string_view name) {
-  return within(in, i, name, -lim::kMaxCoordinate, lim::kMaxCoordinate);
-}
-double time_field(const TextReader& in, std::size_t i) { return within(in, i, "time", -lim::kMaxTime, lim::kMaxTime); }
-
 // The five densities of TwistNoise, fields 2-6 of an odometry or velocity motion line.
 TwistNoise read_twist_noise(const TextReader& in) {
   TwistNoise n;
-  n.q_v = non_negative(in, 2, "q_v", lim::kMaxNoiseDensity);
-  n.q_omega = non_negative(in, 3, "q_omega", lim::kMaxNoiseDensity);
-  n.k_v = non_negative(in, 4, "k_v", lim::kMaxNoiseDensity);
-  n.k_wv = non_negative(in, 5, "k_wv", lim::kMaxNoiseDensity);
-  n.k_ww = non_negative(in, 6, "k_ww", lim::kMaxNoiseDensity);
+  n.q_v = non_negative_within(in, 2, "q_v", lim::kMaxNoiseDensity);
+  n.q_omega = non_negative_within(in, 3, "q_omega", lim::kMaxNoiseDensity);
+  n.k_v = non_negative_within(in, 4, "k_v", lim::kMaxNoiseDensity);
+  n.k_wv = non_negative_within(in, 5, "k_wv", lim::kMaxNoiseDensity);
+  n.k_ww = non_negative_within(in, 6, "k_ww", lim::kMaxNoiseDensity);
   return n;
 }
 
@@ -76,13 +57,13 @@ void read_motion(const TextReader& in, MotionModel* motion) {
       break;
     case MotionModelKind::kAckermann:
       in.expect_fields(8, 8, "motion ackermann");
-      motion->ackermann.q_v = non_negative(in, 2, "q_v", lim::kMaxNoiseDensity);
-      motion->ackermann.q_steer = non_negative(in, 3, "q_steer", lim::kMaxNoiseDensity);
-      motion->vehicle.wheelbase_m = within(in, 4, "wheelbase", 0.0, lim::kMaxRange);
+      motion->ackermann.q_v = non_negative_within(in, 2, "q_v", lim::kMaxNoiseDensity);
+      motion->ackermann.q_steer = non_negative_within(in, 3, "q_steer", lim::kMaxNoiseDensity);
+      motion->vehicle.wheelbase_m = number_within(in, 4, "wheelbase", 0.0, lim::kMaxRange);
       if (motion->vehicle.wheelbase_m <= 0.0) in.fail("wheelbase", "must be positive");
-      motion->vehicle.encoder_offset_m = within(in, 5, "encoder_offset", -lim::kMaxRange, lim::kMaxRange);
-      motion->vehicle.laser_forward_m = within(in, 6, "laser_forward", -lim::kMaxRange, lim::kMaxRange);
-      motion->vehicle.laser_left_m = within(in, 7, "laser_left", -lim::kMaxRange, lim::kMaxRange);
+      motion->vehicle.encoder_offset_m = number_within(in, 5, "encoder_offset", -lim::kMaxRange, lim::kMaxRange);
+      motion->vehicle.laser_forward_m = number_within(in, 6, "laser_forward", -lim::kMaxRange, lim::kMaxRange);
+      motion->vehicle.laser_left_m = number_within(in, 7, "laser_left", -lim::kMaxRange, lim::kMaxRange);
       break;
   }
 }
@@ -124,12 +105,12 @@ Scenario read_scenario(const std::string& path) {
       in.expect_fields(5, 5, "z");
       if (scan_expected == 0) in.fail("z", "measurement outside a scan (a 'scan N' line must announce it)");
       Measurement m;
-      m.range_m = within(in, 1, "range", -INFINITY, lim::kMaxRange);
+      m.range_m = number_within(in, 1, "range", -INFINITY, lim::kMaxRange);
       if (m.range_m < 0.0) in.fail("range", fmt::format("negative range {}", m.range_m));
       m.bearing_rad = in.number(2, "bearing");
       if (std::abs(m.bearing_rad) > kPi + 1e-9) in.fail("bearing", fmt::format("bearing {} outside [-pi, pi]", m.bearing_rad));
       m.bearing_rad = wrap_angle(m.bearing_rad);
-      if (in.field(3) != "-") m.signature = static_cast<float>(within(in, 3, "signature", -lim::kMaxSignature, lim::kMaxSignature));
+      if (in.field(3) != "-") m.signature = static_cast<float>(number_within(in, 3, "signature", -lim::kMaxSignature, lim::kMaxSignature));
       const std::string_view truth = in.field(4);
       if (truth == "clutter") {
         m.truth_id = kTruthClutter;
@@ -148,17 +129,17 @@ Scenario read_scenario(const std::string& path) {
       if (motion_line == 0 || sensor_line == 0 || initial_line == 0)
         in.fail("step", "the 'motion', 'sensor' and 'initial' lines must come before the first step");
       ScenarioStep step;
-      step.time_s = time_field(in, 1);
+      step.time_s = time_field(in, 1, "time");
       if (step.time_s < last_time) in.fail("time", fmt::format("time goes backwards ({} after {})", step.time_s, last_time));
       last_time = step.time_s;
-      step.control = {within(in, 2, "u1", -lim::kMaxControl, lim::kMaxControl), within(in, 3, "u2", -lim::kMaxControl, lim::kMaxControl),
-                      within(in, 4, "u3", -lim::kMaxControl, lim::kMaxControl)};
+      step.control = {number_within(in, 2, "u1", -lim::kMaxControl, lim::kMaxControl), number_within(in, 3, "u2", -lim::kMaxControl, lim::kMaxControl),
+                      number_within(in, 4, "u3", -lim::kMaxControl, lim::kMaxControl)};
       if (s.motion.kind != MotionModelKind::kOdometry && step.control[2] < 0.0) in.fail("u3", "dt must not be negative");
       s.steps.push_back(std::move(step));
     } else if (kind == "truth") {
       in.expect_fields(4, 4, "truth");
       if (s.steps.empty()) in.fail("truth", "ground-truth pose before the first step");
-      s.steps.back().truth_pose = Pose2{coordinate(in, 1, "x"), coordinate(in, 2, "y"), wrap_angle(coordinate(in, 3, "theta"))};
+      s.steps.back().truth_pose = Pose2{coordinate_field(in, 1, "x"), coordinate_field(in, 2, "y"), wrap_angle(coordinate_field(in, 3, "theta"))};
     } else if (kind == "scan") {
       in.expect_fields(2, 2, "scan");
       if (s.steps.empty()) in.fail("scan", "scan before the first step");
@@ -176,12 +157,12 @@ Scenario read_scenario(const std::string& path) {
       if (id < 0 || id > INT32_MAX) in.fail("id", "landmark id must be a non-negative 32-bit integer");
       const auto [first, inserted] = landmark_line.emplace(static_cast<std::int32_t>(id), in.line_number());
       if (!inserted) in.fail("id", fmt::format("landmark {} is listed twice (first at line {})", id, first->second));
-      s.truth_landmarks.push_back({static_cast<std::int32_t>(id), {coordinate(in, 2, "x"), coordinate(in, 3, "y")}});
+      s.truth_landmarks.push_back({static_cast<std::int32_t>(id), {coordinate_field(in, 2, "x"), coordinate_field(in, 3, "y")}});
     } else if (kind == "gps") {
       in.expect_fields(4, 4, "gps");
-      const double t = time_field(in, 1);
+      const double t = time_field(in, 1, "time");
       if (!s.truth_track.empty() && t < s.truth_track.back().time_s) in.fail("time", "gps time goes backwards");
-      s.truth_track.push_back({t, {coordinate(in, 2, "x"), coordinate(in, 3, "y")}});
+      s.truth_track.push_back({t, {coordinate_field(in, 2, "x"), coordinate_field(in, 3, "y")}});
     } else if (kind == "motion") {
       in.expect_fields(2, 8, "motion");
       once(&motion_line, "motion");
@@ -189,23 +170,23 @@ Scenario read_scenario(const std::string& path) {
     } else if (kind == "sensor") {
       in.expect_fields(7, 7, "sensor");
       once(&sensor_line, "sensor");
-      s.sensor.max_range_m = non_negative(in, 1, "max_range", lim::kMaxRange);
-      s.sensor.min_range_m = non_negative(in, 2, "min_range", lim::kMaxRange);
+      s.sensor.max_range_m = non_negative_within(in, 1, "max_range", lim::kMaxRange);
+      s.sensor.min_range_m = non_negative_within(in, 2, "min_range", lim::kMaxRange);
       if (s.sensor.min_range_m > s.sensor.max_range_m)
         in.fail("min_range", fmt::format("min_range {} exceeds max_range {}", s.sensor.min_range_m, s.sensor.max_range_m));
-      s.sensor.fov_rad = non_negative(in, 3, "fov", 1e300);
+      s.sensor.fov_rad = non_negative_within(in, 3, "fov", 1e300);
       if (s.sensor.fov_rad > 2.0 * kPi + 1e-9) in.fail("fov", "field of view larger than 2 pi");
-      s.sensor.sigma_range_m = within(in, 4, "sigma_range", lim::kMinSigmaRange, lim::kMaxSigma);
-      s.sensor.sigma_bearing_rad = within(in, 5, "sigma_bearing", lim::kMinSigmaBearing, lim::kMaxSigma);
-      if (in.field(6) != "-") s.sensor.sigma_signature = non_negative(in, 6, "sigma_signature", lim::kMaxSigma);
+      s.sensor.sigma_range_m = number_within(in, 4, "sigma_range", lim::kMinSigmaRange, lim::kMaxSigma);
+      s.sensor.sigma_bearing_rad = number_within(in, 5, "sigma_bearing", lim::kMinSigmaBearing, lim::kMaxSigma);
+      if (in.field(6) != "-") s.sensor.sigma_signature = non_negative_within(in, 6, "sigma_signature", lim::kMaxSigma);
     } else if (kind == "initial") {
       in.expect_fields(8, 8, "initial");
       once(&initial_line, "initial");
-      s.start_time_s = time_field(in, 1);
+      s.start_time_s = time_field(in, 1, "time");
       last_time = s.start_time_s;
-      s.initial_pose = {coordinate(in, 2, "x"), coordinate(in, 3, "y"), wrap_angle(coordinate(in, 4, "theta"))};
-      s.initial_sigma = {non_negative(in, 5, "sigma_x", lim::kMaxSigma), non_negative(in, 6, "sigma_y", lim::kMaxSigma),
-                         non_negative(in, 7, "sigma_theta", lim::kMaxSigma)};
+      s.initial_pose = {coordinate_field(in, 2, "x"), coordinate_field(in, 3, "y"), wrap_angle(coordinate_field(in, 4, "theta"))};
+      s.initial_sigma = {non_negative_within(in, 5, "sigma_x", lim::kMaxSigma), non_negative_within(in, 6, "sigma_y", lim::kMaxSigma),
+                         non_negative_within(in, 7, "sigma_theta", lim::kMaxSigma)};
     } else if (kind == "meta") {
       in.expect_fields(2, 1000, "meta");
       std::string value;

@@ -5,26 +5,12 @@
 
 #include <string>
 
+#include "core/io/field_limits.h"
 #include "core/io/scenario.h"
 
 namespace arbor {
 
-// The physical limits of a scenario (docs/scenario_format.md, "Limits"): a value outside them is an input
-// error at the reader, never an abort or a NaN inside the engine. They are far outside any real robot's
-// figures, and inside what double arithmetic squares and inverts safely (a denormal sigma makes a singular
-// covariance; a control of 1e300 m overflows when squared).
-namespace scenario_limits {
-inline constexpr double kMaxCoordinate = 1e9;      // |x|, |y| of poses, landmarks and GPS fixes [m]
-inline constexpr double kMaxTime = 1e12;           // |t| [s]
-inline constexpr double kMaxRange = 1e6;           // measured ranges and sensor ranges [m]
-inline constexpr double kMinSigmaRange = 1e-6;     // [m]
-inline constexpr double kMinSigmaBearing = 1e-9;   // [rad]
-inline constexpr double kMaxSigma = 1e3;           // any standard deviation [m, rad or signature units]
-inline constexpr double kMaxNoiseDensity = 1e6;    // motion noise densities
-inline constexpr double kMaxControl = 1e6;         // |u| of each control field
-inline constexpr double kMaxSignature = 1e6;       // |signature|
-inline constexpr int kMaxMeasurementsPerScan = 10'000;  // a budget: every strategy's work grows with it
-}  // namespace scenario_limits
+// The physical limits (scenario_limits) live in core/io/field_limits.h, shared with the dataset readers.
 
 // Throws InputError naming file, line and field on anything malformed: truncation, non-numeric or
 // non-finite values, values outside scenario_limits, negative ranges, times going backwards, unknown line

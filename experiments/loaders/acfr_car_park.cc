@@ -7,6 +7,7 @@
 
 #include <fmt/core.h>
 
+#include "core/io/field_limits.h"
 #include "core/io/text_reader.h"
 #include "core/metrics/trajectory_metrics.h"
 #include "core/models/range_bearing_model.h"
@@ -38,11 +39,10 @@ std::vector<LaserScan> read_laser(const std::string& path, char prefix) {
   for (int k = 0; k < kBeams; ++k) names[k] = fmt::format("{}{}", prefix, k);
   while (in.next()) {
     in.expect_fields(kBeams + 1, kBeams + 1, "laser");
-    LaserScan s{seconds_to_ms(in.number(0, "time_s")), std::vector<double>(kBeams)};
+    LaserScan s{seconds_to_ms(time_field(in, 0, "time_s")), std::vector<double>(kBeams)};
     order.check(in, s.time_ms, "time_s");
     for (int k = 0; k < kBeams; ++k) {
-      s.values[k] = in.number(k + 1, names[k]);
-      if (s.values[k] < 0.0) in.fail(names[k], fmt::format("negative value {}", s.values[k]));
+      s.values[k] = non_negative_within(in, k + 1, names[k], scenario_limits::kMaxRange);
     }
     scans.push_back(std::move(s));
   }
@@ -57,9 +57,9 @@ std::vector<ControlSample> read_dead_reckoning(const std::string& path) {
   while (in.next()) {
     in.expect_fields(3, 3, "dead-reckoning");
     ControlSample c;
-    c.time_ms = seconds_to_ms(in.number(0, "time_s"));
+    c.time_ms = seconds_to_ms(time_field(in, 0, "time_s"));
     order.check(in, c.time_ms, "time_s");
-    c.u1 = in.number(1, "velocity_mps");
+    c.u1 = control_field(in, 1, "velocity_mps");
     c.u2 = in.number(2, "steering_rad");
     if (std::abs(c.u2) >= 1.2) in.fail("steering_rad", fmt::format("steering {} rad is outside the vehicle's range", c.u2));
     controls.push_back(c);
@@ -75,9 +75,9 @@ std::vector<TimedPosition> read_gps(const std::string& path) {
   std::vector<TimedPosition> track;
   while (in.next()) {
     in.expect_fields(3, 3, "GPS");
-    const double t = in.number(0, "time_s");
+    const double t = time_field(in, 0, "time_s");
     order.check(in, seconds_to_ms(t), "time_s");
-    track.push_back({t, {in.number(1, "x_east_m"), in.number(2, "y_north_m")}});
+    track.push_back({t, {coordinate_field(in, 1, "x_east_m"), coordinate_field(in, 2, "y_north_m")}});
   }
   return track;
 }
@@ -91,7 +91,7 @@ std::vector<TruthLandmark> read_beacons(const std::string& path) {
     in.expect_fields(3, 3, "beacon");
     const std::int64_t id = in.integer(0, "beacon_row");
     if (id < 0 || id > INT32_MAX || !ids.insert(id).second) in.fail("beacon_row", fmt::format("bad or repeated beacon id {}", id));
-    beacons.push_back({static_cast<std::int32_t>(id), {in.number(1, "x_east_m"), in.number(2, "y_north_m")}});
+    beacons.push_back({static_cast<std::int32_t>(id), {coordinate_field(in, 1, "x_east_m"), coordinate_field(in, 2, "y_north_m")}});
   }
   if (beacons.empty()) throw InputError(path, 0, "", "no beacons");
   return beacons;

@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 #include <fmt/core.h>
 
+#include "core/io/field_limits.h"
 #include "core/io/text_reader.h"
 #include "core/models/odometry_model.h"
 #include "experiments/loaders/noise_estimation.h"
@@ -19,6 +20,17 @@ std::int64_t id_field(const TextReader& in, std::size_t i, std::string_view name
   const std::int64_t id = in.integer(i, name);
   if (id < 0 || id > INT32_MAX) in.fail(name, fmt::format("id {} must be a non-negative 32-bit integer", id));
   return id;
+}
+
+// A variance within the squares of scenario_limits' sigmas, and an off-diagonal entry within the largest
+// variance: the smoother inverts these matrices, and the inverse of diag(1e300, 1e300) is not finite.
+double variance_field(const TextReader& in, std::size_t i, std::string_view name) {
+  namespace lim = scenario_limits;
+  return number_within(in, i, name, lim::kMinSigmaBearing * lim::kMinSigmaBearing, lim::kMaxSigma * lim::kMaxSigma);
+}
+double covariance_field(const TextReader& in, std::size_t i, std::string_view name) {
+  namespace lim = scenario_limits;
+  return number_within(in, i, name, -lim::kMaxSigma * lim::kMaxSigma, lim::kMaxSigma * lim::kMaxSigma);
 }
 
 }  // namespace
@@ -42,9 +54,9 @@ IsamDataset read_isam_dataset(const std::string& path) {
       }
       if (o.to <= o.from) in.fail("j", fmt::format("pose {} must come after pose {}", o.to, o.from));
       if (poses.count(o.to) || landmarks.count(o.to)) in.fail("j", fmt::format("id {} is already in use", o.to));
-      o.delta = {in.number(3, "dx"), in.number(4, "dy"), wrap_angle(in.number(5, "dtheta"))};
-      const double xx = in.number(6, "c_xx"), xy = in.number(7, "c_xy"), xt = in.number(8, "c_xt");
-      const double yy = in.number(9, "c_yy"), yt = in.number(10, "c_yt"), tt = in.number(11, "c_tt");
+      o.delta = {control_field(in, 3, "dx"), control_field(in, 4, "dy"), wrap_angle(control_field(in, 5, "dtheta"))};
+      const double xx = variance_field(in, 6, "c_xx"), xy = covariance_field(in, 7, "c_xy"), xt = covariance_field(in, 8, "c_xt");
+      const double yy = variance_field(in, 9, "c_yy"), yt = covariance_field(in, 10, "c_yt"), tt = variance_field(in, 11, "c_tt");
       o.covariance << xx, xy, xt, xy, yy, yt, xt, yt, tt;
       if (o.covariance.llt().info() != Eigen::Success) in.fail("c_xx", "odometry covariance is not positive definite");
       d.pose_ids.push_back(o.to);
@@ -57,8 +69,8 @@ IsamDataset read_isam_dataset(const std::string& path) {
       ob.landmark = id_field(in, 2, "l");
       if (!poses.count(ob.pose)) in.fail("i", fmt::format("observation from pose {}, which the odometry has not reached", ob.pose));
       if (poses.count(ob.landmark)) in.fail("l", fmt::format("landmark id {} is a pose id", ob.landmark));
-      ob.position_m = {in.number(3, "x"), in.number(4, "y")};
-      const double xx = in.number(5, "c_xx"), xy = in.number(6, "c_xy"), yy = in.number(7, "c_yy");
+      ob.position_m = {control_field(in, 3, "x"), control_field(in, 4, "y")};
+      const double xx = variance_field(in, 5, "c_xx"), xy = covariance_field(in, 6, "c_xy"), yy = variance_field(in, 7, "c_yy");
       ob.covariance << xx, xy, xy, yy;
       if (ob.covariance.llt().info() != Eigen::Success) in.fail("c_xx", "observation covariance is not positive definite");
       if (ob.position_m.norm() == 0.0) in.fail("x", "landmark at the sensor itself has no bearing");

@@ -7,6 +7,7 @@
 
 #include <fmt/core.h>
 
+#include "core/io/field_limits.h"
 #include "core/io/text_reader.h"
 #include "experiments/loaders/loader_util.h"
 #include "experiments/loaders/step_merger.h"
@@ -45,9 +46,9 @@ std::vector<TruthLandmark> read_landmarks(const std::string& path, const std::se
     // Checked as read: a cast first made 4294967302 the subject 6.
     if (id < 1 || id > INT32_MAX || !subjects.count(static_cast<std::int32_t>(id)))
       in.fail("subject", fmt::format("landmark subject {} has no barcode in Barcodes.dat", id));
-    landmarks.push_back({static_cast<std::int32_t>(id), {in.number(1, "x"), in.number(2, "y")}});
-    in.number(3, "x_std");
-    in.number(4, "y_std");
+    landmarks.push_back({static_cast<std::int32_t>(id), {coordinate_field(in, 1, "x"), coordinate_field(in, 2, "y")}});
+    non_negative_within(in, 3, "x_std", scenario_limits::kMaxSigma);
+    non_negative_within(in, 4, "y_std", scenario_limits::kMaxSigma);
   }
   if (landmarks.empty()) throw InputError(path, 0, "", "no landmarks");
   return landmarks;
@@ -59,9 +60,9 @@ std::vector<TimedPose> read_groundtruth(const std::string& path) {
   std::vector<TimedPose> poses;
   while (in.next()) {
     in.expect_fields(4, 4, "ground-truth pose");
-    const std::int64_t t = seconds_to_ms(in.number(0, "time"));
+    const std::int64_t t = seconds_to_ms(time_field(in, 0, "time"));
     order.check(in, t, "time");
-    poses.push_back({t, {in.number(1, "x"), in.number(2, "y"), wrap_angle(in.number(3, "orientation"))}});
+    poses.push_back({t, {coordinate_field(in, 1, "x"), coordinate_field(in, 2, "y"), wrap_angle(control_field(in, 3, "orientation"))}});
   }
   if (poses.size() < 2) throw InputError(path, in.line_number(), "", "fewer than two ground-truth poses");
   return poses;
@@ -74,9 +75,9 @@ std::vector<ControlSample> read_odometry(const std::string& path, LoadReport* re
   while (in.next()) {
     in.expect_fields(3, 3, "odometry");
     ControlSample c;
-    c.time_ms = seconds_to_ms(in.number(0, "time"));
-    c.u1 = in.number(1, "v");
-    c.u2 = in.number(2, "omega");
+    c.time_ms = seconds_to_ms(time_field(in, 0, "time"));
+    c.u1 = control_field(in, 1, "v");
+    c.u2 = control_field(in, 2, "omega");
     // Known dirty: robots 2-5 of Dataset 6 log a few commands twice in one millisecond. The later one is
     // the command in force, so it replaces the earlier.
     if (order.check(in, c.time_ms, "time")) {
@@ -99,11 +100,11 @@ std::vector<TimedScan> read_measurements(const std::string& path, const std::map
   std::int64_t last_scan_ms = INT64_MIN;
   while (in.next()) {
     in.expect_fields(4, 4, "measurement");
-    const std::int64_t t = seconds_to_ms(in.number(0, "time"));
+    const std::int64_t t = seconds_to_ms(time_field(in, 0, "time"));
     order.check(in, t, "time");
     const std::int64_t barcode = in.integer(1, "barcode");
     Measurement m;
-    m.range_m = in.number(2, "range");
+    m.range_m = range_field(in, 2, "range");
     if (m.range_m <= 0.0) in.fail("range", fmt::format("range {} m must be positive", m.range_m));
     m.bearing_rad = in.number(3, "bearing");
     if (std::abs(m.bearing_rad) > kPi) in.fail("bearing", fmt::format("bearing {} rad outside [-pi, pi]", m.bearing_rad));

@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "core/io/field_limits.h"
 #include "core/io/text_reader.h"
 #include "experiments/loaders/loader_util.h"
 #include "experiments/loaders/step_merger.h"
@@ -21,9 +22,9 @@ std::vector<ControlSample> read_dead_reckoning(const std::string& path) {
   while (in.next()) {
     in.expect_fields(3, 3, "dead-reckoning");
     ControlSample c;
-    c.time_ms = in.integer(0, "time_ms");
+    c.time_ms = time_ms_field(in, 0, "time_ms");
     order.check(in, c.time_ms, "time_ms");
-    c.u1 = in.number(1, "speed_mps");
+    c.u1 = control_field(in, 1, "speed_mps");
     c.u2 = in.number(2, "steering_rad");
     // A steering angle at or past 90 degrees makes tan(alpha) meaningless; the ute's lock is about 35 degrees.
     if (std::abs(c.u2) >= 1.2) in.fail("steering_rad", fmt::format("steering {} rad is outside the vehicle's range", c.u2));
@@ -40,9 +41,9 @@ std::vector<TimedPosition> read_gps(const std::string& path) {
   std::vector<TimedPosition> track;
   while (in.next()) {
     in.expect_fields(3, 3, "GPS");
-    const std::int64_t t = in.integer(0, "time_ms");
+    const std::int64_t t = time_ms_field(in, 0, "time_ms");
     order.check(in, t, "time_ms");
-    track.push_back({(t - kVictoriaParkOriginMs) / 1000.0, {in.number(1, "Lo_m"), in.number(2, "La_m")}});
+    track.push_back({(t - kVictoriaParkOriginMs) / 1000.0, {coordinate_field(in, 1, "Lo_m"), coordinate_field(in, 2, "La_m")}});
   }
   return track;
 }
@@ -55,7 +56,7 @@ std::vector<TimedScan> read_trees(const std::string& path, LoadReport* report) {
   std::vector<TimedScan> scans;
   while (in.next()) {
     in.expect_fields(4, 4, "tree detection");
-    const std::int64_t t = seconds_to_ms(in.number(0, "time")) + kVictoriaParkOriginMs;
+    const std::int64_t t = seconds_to_ms(time_field(in, 0, "time")) + kVictoriaParkOriginMs;
     const bool same_scan = order.check(in, t, "time");
     Measurement m;
     m.range_m = in.number(1, "range");
@@ -65,8 +66,7 @@ std::vector<TimedScan> read_trees(const std::string& path, LoadReport* report) {
       in.fail("bearing", fmt::format("bearing {} rad outside the laser's [0, pi]", bearing_laser));
     // Laser frame: 0 = vehicle's right, pi/2 = ahead; the vehicle frame has 0 = ahead, counter-clockwise.
     m.bearing_rad = wrap_angle(bearing_laser - kPi / 2.0);
-    const double diameter = in.number(3, "diameter");
-    if (diameter < 0.0) in.fail("diameter", fmt::format("negative trunk diameter {}", diameter));
+    const double diameter = non_negative_within(in, 3, "diameter", scenario_limits::kMaxSignature);
     m.signature = static_cast<float>(diameter);
     if (!same_scan) scans.push_back({t, {}});
     scans.back().measurements.push_back(m);

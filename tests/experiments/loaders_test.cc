@@ -493,7 +493,7 @@ TEST(IsamVictoriaPark, BrokenCopiesGiveErrorsNamingFileLineAndField) {
   }
   {  // not positive definite
     BrokenCopy c(kTestData + "victoria_park");
-    c.replace_line(file, 5, "LANDMARK 4 5 11.5387 -3.2007 0.4 0 -0.4");
+    c.replace_line(file, 5, "LANDMARK 4 5 11.5387 -3.2007 0.4 0.5 0.4");
     expect_input_error([&] { read_isam_dataset(c.path(file)); }, file, 5, "c_xx");
   }
   {

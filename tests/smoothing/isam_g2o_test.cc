@@ -74,7 +74,12 @@ TEST(IsamGraph, MalformedInputNamesLineAndField) {
   expect_input_error("ODOMETRY 0 1 1 x 0 0.01 0 0 0.01 0 0.001\n", 1, "dy");                  // not a number
   expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 0.001\nLANDMARK 1 0 1 1 1 0 1\n", 2, "l");  // a pose id
   expect_input_error("LANDMARK 0 5 1 1 1 0 1\n", 1, "i");                                    // pose not reached
-  expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 -1\n", 1, "c_xx");                 // not SPD
+  expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 -1\n", 1, "c_tt");                 // a negative variance
+  expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0.02 0 0.01 0 0.001\n", 1, "c_xx");             // not SPD
+  // Outside the limits of docs/scenario_format.md: the smoother inverts these (diag(1e300, 1e300) aborted it).
+  expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 0.001\nLANDMARK 1 2 1 1 1e300 0 1e300\n", 2, "c_xx");
+  expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 0.001\nLANDMARK 1 2 1e200 1 1 0 1\n", 2, "x");
+  expect_input_error("ODOMETRY 0 1 1 0 0 1e-300 0 0 0.01 0 0.001\n", 1, "c_xx");
   expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 0.001\nEDGE2 0 1\n", 2, "type");
   expect_input_error("ODOMETRY 0 1 1 0 0 0.01 0 0 0.01 0 0.001\nODOMETRY 2 3 1 0 0 0.01 0 0 0.01 0 0.001\n", 2,
                      "i");  // 2 and 3 are not connected to 0
