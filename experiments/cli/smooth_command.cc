@@ -96,8 +96,9 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                  r["ate_aligned"].get<bool>() ? ", aligned to GPS" : "", show(r["landmark_rmse_m"]),
                  show(r["nees_mean"]),
                  s.pose_marginals ? fmt::format(" (marginals {:.3f} s)", s.marginals_time_s) : std::string());
-      fmt::print("  wrote {}/result.json, trajectory.tum, map.csv{}\n", config->out_dir,
-                 config->g2o_path.empty() ? "" : ", " + config->g2o_path);
+      if (s.usable)
+        fmt::print("  wrote {}/result.json, trajectory.tum, map.csv{}\n", config->out_dir,
+                   config->g2o_path.empty() ? "" : ", " + config->g2o_path);
       return s.usable ? 0 : 1;
     };
   });

@@ -207,7 +207,9 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
   r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   r["peak_rss_bytes"] = peak_rss_bytes();
 
-  if (!config.out_dir.empty()) {
+  // An unusable solve (Ceres FAILURE, a non-finite cost) is no result: nothing is written, so no result.json
+  // marks it finished, and `arbor smooth` exits 1.
+  if (!config.out_dir.empty() && s.usable) {
     std::filesystem::create_directories(config.out_dir);
     const std::string dir = config.out_dir + "/";
     write_tum(dir + "trajectory.tum", trajectory);
