@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Arbor needs, only those missing (run as root). Safe to run repeatedly.
 set -euo pipefail
-packages=(cmake ninja-build g++ git libeigen3-dev libtbb-dev libceres-dev libfmt-dev libcli11-dev
+packages=(cmake ninja-build g++ clang libclang-rt-14-dev git libeigen3-dev libtbb-dev libceres-dev libfmt-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libtomlplusplus-dev
           python3 python3-numpy python3-pandas python3-matplotlib)
 missing=()

@@ -9,11 +9,6 @@
 namespace arbor {
 namespace {
 
-template <class... T>
-std::vector<std::string> names(TypeList<T...>) {
-  return {std::string(T::kName)...};
-}
-
 template <class... Maps>
 std::unique_ptr<Filter> make_with_map(TypeList<Maps...>, std::string_view map, std::string_view assoc,
                                       const Scenario& scenario, const FastSlamOptions& options) {
@@ -30,9 +25,6 @@ bool contains(const std::vector<std::string>& list, std::string_view name) {
 }
 
 }  // namespace
-
-std::vector<std::string> map_backend_names() { return names(MapBackends{}); }
-std::vector<std::string> association_names() { return filter_strategy_names(); }
 
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
                                     const FastSlamOptions& options) {

@@ -26,8 +26,13 @@ using MapBackends = TypeList<VectorMap, PersistentTreeMap, HamtMap<>>;
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
                                     const FastSlamOptions& options);
 
-std::vector<std::string> map_backend_names();
-std::vector<std::string> association_names();  // the strategies usable in the filter
+// Inline, so that reading a sweep spec (which checks names against these) does not link the engine.
+template <class... T>
+std::vector<std::string> type_names(TypeList<T...>) {
+  return {std::string(T::kName)...};
+}
+inline std::vector<std::string> map_backend_names() { return type_names(MapBackends{}); }
+inline std::vector<std::string> association_names() { return filter_strategy_names(); }  // usable in the filter
 
 // The engine instantiations of one map back end with every strategy. Each back end's instantiations live
 // in their own translation unit (variants/engine/filters_<name>.cc, one ARBOR_INSTANTIATE_FILTERS line) so

@@ -1,0 +1,29 @@
+// libFuzzer target: the ACFR Car Park converter (experiments/loaders/acfr_car_park.h) on a copy of
+// tests/data/acfr_car_park with one of its five files replaced by the input, the noise estimation of
+// `convert --estimate-noise`, then the scenario writer.
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "experiments/loaders/acfr_car_park.h"
+#include "tests/fuzz/fuzz_support.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace arbor;
+  static fuzz::DatasetCopy copy(ARBOR_SOURCE_DIR "/tests/data/acfr_car_park",
+                                {"csv/dead_reckoning.csv", "csv/gps.csv", "csv/beacons_groundtruth.csv",
+                                 "csv/laser_ranges.csv", "csv/laser_intensity.csv"});
+  copy.with_input(data, size, [](const std::string& dir) {
+    try {
+      LoadReport report;
+      Scenario scenario = load_acfr_car_park(dir, &report);
+      const CarParkNoiseEstimate e = estimate_car_park_noise(scenario);
+      if (e.measurement.count > 0) {
+        scenario.sensor.sigma_range_m = e.measurement.sigma_range_m;
+        scenario.sensor.sigma_bearing_rad = e.measurement.sigma_bearing_rad;
+      }
+      if (e.motion.windows > 0) scenario.motion.ackermann = {e.motion.q_1, e.motion.q_2};
+      write_scenario(scenario, (fuzz::scratch_dir() / "out.scn").string());
+    } catch (const InputError&) {
+    }
+  });
+  return 0;
+}

@@ -1,0 +1,34 @@
+// libFuzzer target: the UTIAS MRCLAM converter (experiments/loaders/utias_mrclam.h) on a copy of
+// tests/data/utias_mrclam with one of its five files replaced by the input, the noise estimation of
+// `convert --estimate-noise`, then the scenario writer.
+#include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "experiments/loaders/noise_estimation.h"
+#include "experiments/loaders/utias_mrclam.h"
+#include "tests/fuzz/fuzz_support.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace arbor;
+  static fuzz::DatasetCopy copy(ARBOR_SOURCE_DIR "/tests/data/utias_mrclam",
+                                {"Barcodes.dat", "Landmark_Groundtruth.dat", "Robot1_Groundtruth.dat",
+                                 "Robot1_Odometry.dat", "Robot1_Measurement.dat"});
+  copy.with_input(data, size, [](const std::string& dir) {
+    try {
+      LoadReport report;
+      Scenario scenario = load_utias_mrclam(dir, UtiasOptions{}, &report);
+      const MeasurementNoiseEstimate m = estimate_measurement_noise(scenario);
+      const MotionNoiseEstimate u = estimate_motion_noise(scenario, 1.0);
+      if (m.count > 0) {
+        scenario.sensor.sigma_range_m = m.sigma_range_m;
+        scenario.sensor.sigma_bearing_rad = m.sigma_bearing_rad;
+      }
+      if (u.windows > 0) {
+        scenario.motion.velocity.q_v = u.q_1;
+        scenario.motion.velocity.q_omega = u.q_2;
+      }
+      write_scenario(scenario, (fuzz::scratch_dir() / "out.scn").string());
+    } catch (const InputError&) {
+    }
+  });
+  return 0;
+}
