@@ -78,7 +78,7 @@ CLI::Validator at_least(double minimum) {
   return CLI::Validator(
       [minimum](std::string& text) {
         double value = 0.0;
-        if (!read_number(text, &value) || value >= minimum) return std::string();
+        if (!read_number(text, &value) || std::isnan(value) || value >= minimum) return std::string();  // NaN: kFinite
         return fmt::format("must be at least {:g} (got {})", minimum, text);
       },
       fmt::format(">= {:g}", minimum), "at_least");
@@ -88,7 +88,7 @@ CLI::Validator within(double minimum, double maximum) {
   return CLI::Validator(
       [minimum, maximum](std::string& text) {
         double value = 0.0;
-        if (!read_number(text, &value) || (value >= minimum && value <= maximum)) return std::string();
+        if (!read_number(text, &value) || std::isnan(value) || (value >= minimum && value <= maximum)) return std::string();
         return fmt::format("must lie in [{:g}, {:g}] (got {})", minimum, maximum, text);
       },
       fmt::format("in [{:g}, {:g}]", minimum, maximum), "within");

@@ -4,6 +4,7 @@
 
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
+#include "core/io/atomic_file.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/option_checks.h"
 #include "experiments/run/fastslam_run.h"
@@ -84,6 +85,9 @@ void add_run_command(CLI::App& app, CommandAction* action) {
   cmd->add_flag("--quiet", *quiet, "No progress line");
   cmd->callback([=] {
     *action = [=] {
+      // Before anything can fail: a bad scenario or option must not leave the previous run's result.json
+      // marking this directory finished (run_fastslam forgets it too, for callers of the library).
+      forget_finished_run(config->out_dir);
       if (!from_string(*filter, &config->options.version)) throw InputError("", 0, "filter", "unknown filter " + *filter);
       if (!from_string(*sampling, &config->options.motion_sampling))
         throw InputError("", 0, "motion-sampling", "unknown motion sampling " + *sampling);

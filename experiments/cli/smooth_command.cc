@@ -1,5 +1,6 @@
 // `arbor smooth`: the Ceres full-SLAM smoother over a scenario (or a pre-associated iSAM file); writes
 // DIR/result.json, trajectory.tum, map.csv, and optionally the problem as g2o.
+#include "core/io/atomic_file.h"
 #include "experiments/cli/commands.h"
 
 #ifdef ARBOR_HAVE_SMOOTHER
@@ -69,6 +70,7 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
   cmd->add_flag("--quiet", *quiet, "No summary on stdout");
   cmd->callback([=] {
     *action = [=] {
+      forget_finished_run(config->out_dir);  // before anything can fail (see run_command.cc)
       if (config->scenario_path.empty() && config->isam_path.empty())
         throw InputError("", 0, "scenario", "give --scenario FILE or --isam FILE");
       if (!from_string(*loss, &config->options.loss)) throw InputError("", 0, "loss", "unknown loss " + *loss);

@@ -1,0 +1,260 @@
+// The hostile-input suite: one case per hostile input found by the review behind issue 14, grouped by its
+// class. Each runs the real `arbor` binary on a mutated copy of a valid input and asserts the contract of
+// README "Exit status": exit 0 with finite output, or exit 2 (input, options) / 1 (environment) with a
+// message naming file:line:field where the input has lines, and no result.json after a failure.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/experiments/test_support.h"
+
+namespace arbor {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kData = std::string(ARBOR_SOURCE_DIR) + "/tests/data/";
+
+void write_text(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// dst = src with the first match of pattern (ECMAScript, per line with multiline anchors) replaced.
+void mutate(const fs::path& src, const fs::path& dst, const std::string& pattern, const std::string& replacement) {
+  const std::string text = testing::read_file(src.string());
+  const std::regex re(pattern, std::regex::ECMAScript | std::regex::multiline);
+  ASSERT_TRUE(std::regex_search(text, re)) << pattern << " not in " << src;
+  write_text(dst, std::regex_replace(text, re, replacement, std::regex_constants::format_first_only));
+}
+
+struct HostileCase {
+  std::string klass;  // the class of issue 14's list it belongs to
+  std::string name;
+  // Prepares files in dir (a fresh scratch directory holding w.scn, a valid scenario).
+  std::function<void(const fs::path& dir)> setup;
+  std::string command;  // {arbor} and {dir} are substituted
+  int exit_code;
+  std::string message;  // a regex the output must match (empty: none)
+  // Exit 0: result.json exists and nothing in the run's files is NaN or infinite.
+  // Otherwise: {dir}/out/result.json does not exist.
+};
+
+std::ostream& operator<<(std::ostream& os, const HostileCase& c) { return os << c.klass << "/" << c.name; }
+
+void no_setup(const fs::path&) {}
+
+// A scenario edit: w.scn with the first line matching pattern replaced.
+std::function<void(const fs::path&)> scenario_edit(std::string pattern, std::string replacement) {
+  return [=](const fs::path& dir) { mutate(dir / "w.scn", dir / "w.scn", pattern, replacement); };
+}
+
+// A copy of a shipped dataset with one file's first line matching pattern replaced.
+std::function<void(const fs::path&)> dataset_edit(std::string dataset, std::string file, std::string pattern,
+                                                  std::string replacement) {
+  return [=](const fs::path& dir) {
+    fs::copy(kData + dataset, dir / dataset, fs::copy_options::recursive);
+    mutate(dir / dataset / file, dir / dataset / file, pattern, replacement);
+  };
+}
+
+std::function<void(const fs::path&)> file(std::string name, std::string text) {
+  return [=](const fs::path& dir) { write_text(dir / name, text); };
+}
+
+// A sweep spec over the scenario w.scn with the given [grid] or [sweep] additions.
+std::string sweep_spec(const std::string& sweep_extra, const std::string& grid) {
+  return "[sweep]\nname = \"hostile\"\n" + sweep_extra + "\n[scenarios]\ndatasets = [\"w.scn\"]\n\n[grid]\n" +
+         "filter = \"fastslam2\"\nmap = \"naive\"\nassoc = \"known\"\n" + grid;
+}
+
+const std::string kRunBase = "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out ";
+const std::string kRun = kRunBase + "--particles 8 ";
+const std::string kSimulate = "{arbor} simulate --landmarks 20 --steps 5 --out {dir}/out/s.scn ";
+const std::string kIsam = "victoria_park/isam_gtsam/victoria_park.txt";
+
+std::vector<HostileCase> hostile_cases() {
+  const std::string field_re = R"(:\d+: field ')";
+  return {
+      // 1. Aborts on accepted input: now either a finite run or an input error.
+      {"aborts", "zero_range_known", scenario_edit("^z [^ \n]+", "z 0"), kRun, 0, ""},
+      {"aborts", "zero_range_fastslam1_nn", scenario_edit("^z [^ \n]+", "z 0"), kRun + "--filter fastslam1 --assoc nn", 0, ""},
+      {"aborts", "zero_range_jcbb", scenario_edit("^z [^ \n]+", "z 0"), kRun + "--assoc jcbb", 0, ""},
+      {"aborts", "zero_range_locality", scenario_edit("^z [^ \n]+", "z 0"), kRun + "--assoc locality", 0, ""},
+      {"aborts", "denormal_sigma_range", scenario_edit(R"(^(sensor [^ \n]+ [^ \n]+ [^ \n]+) [^ \n]+)", "$1 5e-324"), kRun, 2,
+       "w.scn" + field_re + "sigma_range'"},
+      {"aborts", "sigmas_at_their_lower_limits_nn",
+       scenario_edit(R"(^(sensor [^ \n]+ [^ \n]+ [^ \n]+) [^ \n]+ [^ \n]+)", "$1 1e-6 1e-9"), kRun + "--assoc nn", 0, ""},
+      {"aborts", "control_1e300", scenario_edit(R"(^step ([^ \n]+) [^ \n]+)", "step $1 1e300"), kRun, 2, "w.scn" + field_re + "u1'"},
+      {"aborts", "controls_at_their_limit_fastslam1_nn",
+       scenario_edit(R"(^step ([^ \n]+) [^ \n]+ [^ \n]+ [^ \n]+)", "step $1 1e6 1e6 1e6"), kRun + "--filter fastslam1 --assoc nn", 0, ""},
+      {"aborts", "motion_noise_1e300", scenario_edit(R"(^motion odometry [^ \n]+)", "motion odometry 1e300"), kRun, 2,
+       "w.scn" + field_re + "q_v'"},
+      {"aborts", "motion_noise_at_its_limit_jcbb",
+       scenario_edit(R"(^motion odometry .*)", "motion odometry 1e6 1e6 1e6 1e6 1e6"), kRun + "--assoc jcbb", 0, ""},
+      {"aborts", "initial_sigma_at_its_limit_nn",
+       scenario_edit(R"(^(initial [^ \n]+ [^ \n]+ [^ \n]+ [^ \n]+) .*)", "$1 1e3 1e3 1e3"), kRun + "--assoc nn", 0, ""},
+      {"aborts", "new_landmark_chi2_nan", no_setup, "{arbor} associate --problem {dir}/p --new-landmark-chi2 nan", 2,
+       "--new-landmark-chi2"},
+      {"aborts", "new_landmark_chi2_two", no_setup, "{arbor} associate --problem {dir}/p --new-landmark-chi2 2", 2,
+       "--new-landmark-chi2"},
+      {"aborts", "smooth_isam_huge_covariance", dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt",
+                                                             R"(0\.4 0 0\.4$)", "1e300 0 1e300"),
+       "{arbor} smooth --isam {dir}/" + kIsam + " --out {dir}/out", 2, "victoria_park.txt" + field_re + "c_xx'"},
+      // 2. Exit 0 with NaN or nonsense.
+      {"nan_output", "empty_out", no_setup, "{arbor} run --scenario {dir}/w.scn --out ''", 2, "--out: must not be empty"},
+      {"nan_output", "victoria_park_speed_1e300",
+       dataset_edit("victoria_park", "csv_from_mat/aa3_dr.csv", R"(^(21965),[^,\n]+)", "$1,1e300"),
+       "{arbor} convert --from victoria-park --input {dir}/victoria_park --out {dir}/out/v.scn", 2,
+       "aa3_dr.csv" + field_re + "speed_mps'"},
+      {"nan_output", "smooth_isam_landmark_at_1e200",
+       dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+ \d+) [^ \n]+)", "$1 1e200"),
+       "{arbor} smooth --isam {dir}/" + kIsam + " --out {dir}/out", 2, "victoria_park.txt" + field_re + "x'"},
+      {"nan_output", "utias_odometry_speed_1e300",
+       dataset_edit("utias_mrclam", "Robot1_Odometry.dat", R"(^(\s*[0-9.]+\s+)[^\s]+)", "$1 1e300"),
+       "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
+       "Robot1_Odometry.dat" + field_re + "v'"},
+      {"nan_output", "car_park_gps_at_1e300",
+       dataset_edit("acfr_car_park", "csv/gps.csv", R"(^([0-9.]+),[^,\n]+)", "$1,1e300"),
+       "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn", 2,
+       "gps.csv" + field_re + "x_east_m'"},
+      // 3. Writers that emitted files their own reader rejects: now refused, and nothing written.
+      {"writers", "simulate_sigma_range_zero", no_setup, kSimulate + "--sigma-range 0", 2, "field 'sigma_range'"},
+      {"writers", "simulate_fov_100", no_setup, kSimulate + "--fov 100", 2, "field 'fov'"},
+      {"writers", "simulate_sigma_range_1e308", no_setup, kSimulate + "--sigma-range 1e308", 2, "field 'sigma_range'"},
+      {"writers", "convert_isam_landmark_at_1e200",
+       dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+ \d+) [^ \n]+)", "$1 1e200"),
+       "{arbor} convert --from isam --input {dir}/" + kIsam + " --out {dir}/out/i.scn", 2, "victoria_park.txt" + field_re + "x'"},
+      {"writers", "victoria_park_time_int64_min",
+       dataset_edit("victoria_park", "csv_from_mat/aa3_dr.csv", R"(^21965,)", "-9223372036854775808,"),
+       "{arbor} convert --from victoria-park --input {dir}/victoria_park --out {dir}/out/v.scn", 2,
+       "aa3_dr.csv" + field_re + "time_ms'"},
+      // 4. Hangs and blow-ups: counts are checked against the bytes before anything is allocated.
+      {"blowups", "problem_declaring_1e7_predictions", file("p", "arbor-association-problem 1\nobservations 0\npredictions 10000000\n"),
+       "{arbor} associate --problem {dir}/p", 2, "p" + field_re + "predictions count'"},
+      {"blowups", "problem_with_10001_observations", file("p", "arbor-association-problem 1\nobservations 10001\n"),
+       "{arbor} associate --problem {dir}/p", 2, "p" + field_re + "observations count'"},
+      {"blowups", "scan_declaring_20000_measurements", scenario_edit(R"(^scan \d+)", "scan 20000"), kRun, 2,
+       "w.scn" + field_re + "count'"},
+      {"blowups", "sweep_range_to_nan", file("s.toml", sweep_spec("", "particles = 4\nseed = { from = 1, to = nan }\n")),
+       "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml" + field_re + "grid.seed.to'"},
+      {"blowups", "sweep_float_range_to_nan",
+       file("s.toml", "[sweep]\nname = \"nan\"\n[scenarios]\nworld = \"uniform\"\nlandmarks = 20\nsteps = 5\n"
+                      "clutter = { from = 0.0, to = nan, step = 0.5 }\n[grid]\nfilter = \"fastslam2\"\nmap = \"naive\"\n"
+                      "assoc = \"known\"\nparticles = 4\nseed = 1\n"),
+       "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml" + field_re + "scenarios.clutter"},
+      {"blowups", "sweep_grid_too_large", file("s.toml", sweep_spec("", "particles = 4\nseed = { from = 1, to = 100000000 }\n")),
+       "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml"},
+      {"blowups", "tree_search_budget_is_counted", no_setup,
+       "{arbor} associate --generate --landmarks 300 --observations 30 --clutter 10 --pose-sigma 3 3 0.5 --out {dir}/p && "
+       "{arbor} associate --problem {dir}/p --assoc itree --max-hypotheses 2000",
+       0, "budget_exhausted=1"},
+      // 5. Two sweeps into one --out. The concurrent case (a sweep while another holds the directory) is
+      //    SweepEndToEnd.ASecondProcessIntoTheSameOutIsRefused, which holds the lock in-process.
+      {"sweeps", "a_different_spec_into_a_used_out",
+       [](const fs::path& dir) {
+         write_text(dir / "a.toml", sweep_spec("", "particles = 4\nseed = 1\n"));
+         write_text(dir / "b.toml", sweep_spec("", "particles = 5\nseed = 1\n"));
+       },
+       "{arbor} sweep {dir}/a.toml --out {dir}/out >/dev/null && {arbor} sweep {dir}/b.toml --out {dir}/out", 2, "spec"},
+      // 6. A stale result.json: a failed rerun removes the earlier one before it fails.
+      {"stale_result", "rerun_with_a_bad_scenario", file("bad.scn", "arbor-scenario 2\nmotion odometry 1 1 1 1\n"),
+       kRun + ">/dev/null && {arbor} run --scenario {dir}/bad.scn --out {dir}/out", 2, "bad.scn" + field_re},
+      {"stale_result", "rerun_with_a_bad_option", no_setup, kRun + ">/dev/null && " + kRunBase + "--particles 0", 2, "particles must be at least 1"},
+      // 7. Reader gaps.
+      {"reader_gaps", "header_and_end_only", file("w.scn", "arbor-scenario 2\nend 0\n"), kRun, 2, "w.scn" + field_re},
+      {"reader_gaps", "motion_line_twice", scenario_edit(R"(^(motion .*))", "$1\n$1"), kRun, 2, "w.scn" + field_re + "motion'"},
+      {"reader_gaps", "duplicate_landmark_id", scenario_edit(R"(^landmark 1 )", "landmark 0 "), kRun, 2, "w.scn" + field_re},
+      {"reader_gaps", "min_range_above_max_range", scenario_edit(R"(^sensor [^ \n]+ [^ \n]+)", "sensor 20 30"), kRun, 2,
+       "w.scn" + field_re + "min_range'"},
+      {"reader_gaps", "hex_floats_are_numbers", scenario_edit(R"(^z [^ \n]+)", "z 0x1.4p+3"), kRun, 0, ""},
+      {"reader_gaps", "a_directory_as_scenario", [](const fs::path& dir) { fs::create_directories(dir / "d.scn"); },
+       "{arbor} run --scenario {dir}/d.scn --out {dir}/out", 2, "is a directory"},
+      // 8. Exit codes and messages.
+      {"messages", "unwritable_out_exits_one", no_setup, "{arbor} simulate --landmarks 20 --steps 5 --out /proc/arbor_hostile.scn", 1,
+       "/proc/arbor_hostile.scn"},
+      {"messages", "option_error_names_no_empty_file", no_setup, kRunBase + "--particles 0", 2,
+       "arbor: error: field 'options'"},
+      {"messages", "range_bounds_are_short", no_setup, "{arbor} convert --from victoria-park --out {dir}/out/v.scn --max-gps-speed -1", 2,
+       R"(--max-gps-speed: must be at least 0 \(got -1\)\n)"},
+      {"messages", "max_hypotheses_negative", no_setup, kRun + "--max-hypotheses -5", 2, R"(must be at least 1 \(got -5\))"},
+      {"messages", "seed_negative", no_setup, kRun + "--seed -1", 2, "--seed: must not be negative"},
+      {"messages", "prune_nan", no_setup, kRun + "--prune nan", 2, "--prune: must be a finite number"},
+      {"messages", "max_gps_speed_nan", no_setup, "{arbor} convert --from victoria-park --out {dir}/out/v.scn --max-gps-speed nan", 2,
+       "--max-gps-speed: must be a finite number"},
+      {"messages", "utias_landmark_id_past_32_bits",
+       dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*)6(\s))", "$14294967302$2"),
+       "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
+       "Landmark_Groundtruth.dat" + field_re + "subject'"},
+      {"messages", "sweep_metric_typo", file("s.toml", sweep_spec("metrics = [\"ate_rmse\"]", "particles = 4\nseed = 1\n")),
+       "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml" + field_re + "sweep.metrics'"},
+  };
+}
+
+class HostileInput : public ::testing::TestWithParam<HostileCase> {};
+
+std::string substitute(std::string command, const fs::path& dir) {
+  for (const auto& [key, value] : {std::pair<std::string, std::string>{"{arbor}", testing::arbor_binary()},
+                                   std::pair<std::string, std::string>{"{dir}", dir.string()}}) {
+    for (std::size_t at; (at = command.find(key)) != std::string::npos;) command.replace(at, key.size(), value);
+  }
+  return command;
+}
+
+bool has_non_finite_text(const std::string& text) {
+  static const std::regex non_finite(R"((^|[ ,\t:\[])[-+]?(nan|inf|NaN|Inf|infinity)([ ,\t\n\]]|$))",
+                                     std::regex::multiline);
+  return std::regex_search(text, non_finite);
+}
+
+TEST_P(HostileInput, ExitsCleanlyAndSaysWhere) {
+  const HostileCase& c = GetParam();
+  const fs::path dir = testing::scratch_dir("hostile_" + c.klass + "_" + c.name);
+  ASSERT_EQ(testing::run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 8 --clutter 1 --out " +
+                                 (dir / "w.scn").string()).exit_code, 0);
+  c.setup(dir);
+  const auto r = testing::run_command(substitute(c.command, dir));
+  EXPECT_EQ(r.exit_code, c.exit_code) << r.output;
+  if (!c.message.empty()) EXPECT_TRUE(std::regex_search(r.output, std::regex(c.message))) << c.message << "\n" << r.output;
+  // CLI11's own range checks printed the largest double in full, 309 digits.
+  EXPECT_FALSE(std::regex_search(r.output, std::regex("[0-9]{40}"))) << r.output;
+  const fs::path result = dir / "out" / "result.json";
+  if (c.exit_code != 0) {
+    EXPECT_FALSE(fs::exists(result)) << "a failed command left " << result;
+  } else if (c.command.rfind(kRunBase, 0) == 0) {
+    ASSERT_TRUE(fs::exists(result)) << r.output;
+    for (const char* name : {"result.json", "trajectory.tum", "map.csv"})
+      EXPECT_FALSE(has_non_finite_text(testing::read_file((dir / "out" / name).string()))) << name << " holds NaN or inf";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue14, HostileInput, ::testing::ValuesIn(hostile_cases()),
+                         [](const ::testing::TestParamInfo<HostileCase>& info) {
+                           return info.param.klass + "_" + info.param.name;
+                         });
+
+// Class 8: a temporary file that a killed writer left (NAME.tmp.PID, its process gone) is removed by the
+// next write of NAME; a live process's is kept.
+TEST(HostileInputTemporaries, AKilledWritersTemporaryIsRemovedByTheNextRun) {
+  const fs::path dir = testing::scratch_dir("hostile_temporaries");
+  ASSERT_EQ(testing::run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out " + (dir / "w.scn").string()).exit_code, 0);
+  // A pid that exited: a child of this test that is gone by now.
+  const auto gone = testing::run_command("sh -c 'echo $$'");
+  const std::string dead_pid = gone.output.substr(0, gone.output.find('\n'));
+  write_text(dir / "out" / ("result.json.tmp." + dead_pid), "partial");
+  write_text(dir / "out" / ("map.csv.tmp." + std::to_string(::getpid())), "live");
+  const auto r = testing::run_command(testing::arbor_binary() + " run --scenario " + (dir / "w.scn").string() +
+                                      " --particles 4 --quiet --out " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out" / ("result.json.tmp." + dead_pid)));
+  EXPECT_TRUE(fs::exists(dir / "out" / ("map.csv.tmp." + std::to_string(::getpid()))));
+}
+
+}  // namespace
+}  // namespace arbor
