@@ -58,6 +58,7 @@ std::string FastSlamOptions::validate() const {
   if (!std::isfinite(log_odds_prune)) return "log-odds pruning level must be finite";
   if (association.max_hypotheses < 1)
     return fmt::format("search budget (max hypotheses) must be at least 1 (got {})", association.max_hypotheses);
+  if (association.max_work < 1) return fmt::format("search budget (max work) must be at least 1 (got {})", association.max_work);
   if (provisional_scans < 0) return fmt::format("provisional scans must be 0 (keep) or positive (got {})", provisional_scans);
   if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
   const double k = association.known_gate_probability;

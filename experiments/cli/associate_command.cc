@@ -26,7 +26,8 @@ struct AssociateArgs {
   std::string assoc = "jcbb";
   double chi2 = 0.99;
   double new_landmark_chi2 = 0.999;
-  std::int64_t max_hypotheses = 1'000'000;
+  std::int64_t max_hypotheses = AssociationOptions{}.max_hypotheses;
+  std::int64_t max_work = AssociationOptions{}.max_work;
   std::string truth;
   bool generate = false;
   ProblemGeneratorOptions gen;
@@ -63,6 +64,7 @@ int run_solve(const AssociateArgs& a) {
   options.gate_probability = a.chi2;
   options.new_landmark_probability = std::max(a.new_landmark_chi2, a.chi2);
   options.max_hypotheses = a.max_hypotheses;
+  options.max_work = a.max_work;
   // The format carries no covisibility: the locality of a prediction is its nearest predicted neighbours.
   if (a.assoc == "locality") assign_nearest_localities(&problem, options.locality_capacity);
   AssociationResult result;
@@ -110,6 +112,10 @@ void add_associate_command(CLI::App& app, CommandAction* action) {
       ->check(open_probability())
       ->capture_default_str();
   cmd->add_option("--max-hypotheses", args->max_hypotheses, "Search budget of JCBB and the interpretation trees")
+      ->check(at_least(1))
+      ->capture_default_str();
+  cmd->add_option("--max-work", args->max_work,
+                  "Their work budget, in multiply-adds and candidate scans (a tree's compatibility test counts 16)")
       ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("--truth", args->truth, "Ground-truth file (one id or -1 per observation): also print a score line");

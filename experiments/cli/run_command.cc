@@ -69,6 +69,11 @@ void add_run_command(CLI::App& app, CommandAction* action) {
                   "answers with its best hypothesis so far and is counted in result.json budget_exhausted")
       ->check(at_least(1))
       ->capture_default_str();
+  cmd->add_option("--max-work", config->options.association.max_work,
+                  "Their work budget per particle and scan, in multiply-adds and candidate scans (a tree's "
+                  "compatibility test counts 16); reaching it is counted as above")
+      ->check(at_least(1))
+      ->capture_default_str();
   cmd->add_option("--prune", config->options.log_odds_prune, "Drop landmarks whose existence log-odds fall below this")
       ->capture_default_str();
   cmd->add_option("--confirm", config->options.log_odds_confirm,

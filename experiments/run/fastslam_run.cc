@@ -100,6 +100,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"gate_probability", config.options.association.gate_probability},
                  {"new_landmark_probability", config.options.association.new_landmark_probability},
                  {"max_hypotheses", config.options.association.max_hypotheses},
+                 {"max_work", config.options.association.max_work},
                  {"log_odds_prune", config.options.log_odds_prune},
                  {"log_odds_confirm", config.options.log_odds_confirm},
                  {"provisional_scans", config.options.provisional_scans},

@@ -155,6 +155,10 @@ std::vector<HostileCase> hostile_cases() {
        "{arbor} associate --generate --landmarks 300 --observations 30 --clutter 10 --pose-sigma 3 3 0.5 --out {dir}/p && "
        "{arbor} associate --problem {dir}/p --assoc itree --max-hypotheses 2000",
        0, "budget_exhausted=1"},
+      {"blowups", "jcbb_work_budget_is_counted", no_setup,
+       "{arbor} associate --generate --landmarks 60 --observations 50 --clutter 50 --pose-sigma 3 3 0.5 --density 0.2 "
+       "--out {dir}/p && {arbor} associate --problem {dir}/p --assoc jcbb --max-work 1000000",
+       0, "budget_exhausted=1"},
       // 5. Two sweeps into one --out. The concurrent case (a sweep while another holds the directory) is
       //    SweepEndToEnd.ASecondProcessIntoTheSameOutIsRefused, which holds the lock in-process.
       {"sweeps", "a_different_spec_into_a_used_out",

@@ -15,8 +15,8 @@ constexpr int kTabulatedDof = 512;
 class JcbbSearch {
  public:
   JcbbSearch(const AssociationProblem& problem, JcbbScratch& s, const ChiSquareTable& joint_gate,
-             std::int64_t max_hypotheses, AssociationStats* stats)
-      : p_(problem), s_(s), joint_gate_(joint_gate), max_hypotheses_(max_hypotheses), stats_(stats),
+             std::int64_t max_hypotheses, std::int64_t max_work, AssociationStats* stats)
+      : p_(problem), s_(s), joint_gate_(joint_gate), max_hypotheses_(max_hypotheses), max_work_(max_work), stats_(stats),
         levels_(static_cast<int>(s.order.size())),
         coupled_(problem.joint_covariance.size() > 0 || !problem.P.isZero(0.0)) {}
 
@@ -79,6 +79,7 @@ class JcbbSearch {
     if (information_form_) return extend_information(depth, k, j, d2);
     const Vec2 nu = range_bearing_innovation(p_.measurements[s_.order[k]].z, p_.candidates[j].z_hat);
     const int n = 2 * depth;
+    work_ += static_cast<std::int64_t>(n) * n;
     // B = C(paired, j); W = L^-1 B by forward substitution, O(depth^2).
     double* W = s_.W.data();
     for (int t = 0; t < depth; ++t) {
@@ -135,7 +136,8 @@ class JcbbSearch {
 
   // Levels after k that still have an unused compatible candidate: a tighter bound than the static count of
   // levels with any compatible candidate, since candidates taken by the hypothesis cannot pair again.
-  int pairable_after(int k) const {
+  int pairable_after(int k) {
+    work_ += levels_ - k;
     int count = 0;
     for (int l = k + 1; l < levels_; ++l) {
       for (int e = s_.list_begin[l]; e < s_.list_begin[l + 1]; ++e) {
@@ -173,7 +175,7 @@ class JcbbSearch {
   }
 
   void search(int k, int depth, double d2) {
-    if (stats_->hypotheses >= max_hypotheses_) {
+    if (stats_->hypotheses >= max_hypotheses_ || work_ + stats_->tests >= max_work_) {
       stats_->budget_exhausted = true;
       return;
     }
@@ -207,6 +209,8 @@ class JcbbSearch {
   JcbbScratch& s_;
   const ChiSquareTable& joint_gate_;
   std::int64_t max_hypotheses_;
+  std::int64_t max_work_;
+  std::int64_t work_ = 0;  // factor updates and candidate scans; each test counts one more (stats_->tests)
   AssociationStats* stats_;
   int levels_;
   bool coupled_;
@@ -221,6 +225,7 @@ Jcbb::Jcbb(const AssociationOptions& options)
     : gate_(chi_square_quantile(options.gate_probability, 2)),
       new_landmark_gate_(chi_square_quantile(options.new_landmark_probability, 2)),
       max_hypotheses_(options.max_hypotheses),
+      max_work_(options.max_work),
       joint_gate_(options.gate_probability, kTabulatedDof) {}
 
 void Jcbb::solve(const AssociationProblem& problem, Scratch& s, AssociationResult& result) const {
@@ -257,7 +262,7 @@ void Jcbb::solve(const AssociationProblem& problem, Scratch& s, AssociationResul
   }
   s.list_begin[levels] = static_cast<int>(s.list.size());
 
-  JcbbSearch search(problem, s, joint_gate_, max_hypotheses_, &result.stats);
+  JcbbSearch search(problem, s, joint_gate_, max_hypotheses_, max_work_, &result.stats);
   search.run();
 
   result.pairing.assign(m, association::kUnassigned);

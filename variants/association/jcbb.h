@@ -47,7 +47,8 @@ struct JcbbScratch {
 //   * Bound (Neira & Tardós, Fig. 2, tightened): pairings so far + levels left that still have an unused
 //     compatible candidate; a branch that cannot beat the best (more pairings, or as many with a lower D2)
 //     is pruned.
-//   * Budget: after options.max_hypotheses nodes the best hypothesis found so far is returned and
+//   * Budget: after options.max_hypotheses nodes, or options.max_work multiply-adds and candidate scans
+//     (the Cholesky form's node costs O(depth^2)), the best hypothesis found so far is returned and
 //     stats.budget_exhausted is set. Every returned hypothesis passed its joint test.
 class Jcbb {
  public:
@@ -62,6 +63,7 @@ class Jcbb {
   double gate_;
   double new_landmark_gate_;
   std::int64_t max_hypotheses_;
+  std::int64_t max_work_;
   ChiSquareTable joint_gate_;  // chi2(gate_probability, dof), cached
 };
 

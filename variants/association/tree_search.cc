@@ -246,7 +246,7 @@ class TreeSearch {
 
   void branch(int k, int depth, int g) {
     if (s_.used[g] || !passes(k, depth, g)) return;
-    if (stats_->hypotheses >= set_.max_hypotheses) {
+    if (stats_->hypotheses >= set_.max_hypotheses || stats_->tests >= set_.max_work / kTreeTestWork) {
       stats_->budget_exhausted = true;
       return;
     }

@@ -53,7 +53,11 @@ struct TreeSettings {
   double gate2 = 0.0;              // chi2(gate_probability, 2)
   double binary_gate = 0.0;        // chi2(gate_probability, 1) for distances and signatures
   std::int64_t max_hypotheses = 0;
+  std::int64_t max_work = 0;  // AssociationOptions::max_work: compatibility tests count kTreeTestWork each
 };
+
+// The work a compatibility test counts against TreeSettings::max_work: about its multiply-adds.
+inline constexpr std::int64_t kTreeTestWork = 16;
 
 // Verified hypotheses kept, most pairings first; the one whose completion explains most measurements wins.
 inline constexpr int kTreeHypothesesVerified = 8;

@@ -20,6 +20,7 @@ inline TreeSettings make_tree_settings(const AssociationOptions& options, bool u
   s.binary_gate = chi_square_quantile(options.gate_probability, 1);
   s.new_landmark_gate = chi_square_quantile(options.new_landmark_probability, 2);
   s.max_hypotheses = options.max_hypotheses;
+  s.max_work = options.max_work;
   return s;
 }
 
