@@ -66,14 +66,7 @@ int run_convert(const ConvertOptions& o) {
       print_measurement_estimate(m);
       fmt::print("  motion noise from {} windows of {} s: q_v {:.3g} m^2/s (MAD {:.3g}), q_omega {:.3g} rad^2/s (MAD {:.3g})\n",
                  u.windows, o.noise_window_s, u.q_1, u.mad_q_1, u.q_2, u.mad_q_2);
-      if (m.count > 0) {
-        scenario.sensor.sigma_range_m = m.sigma_range_m;
-        scenario.sensor.sigma_bearing_rad = m.sigma_bearing_rad;
-      }
-      if (u.windows > 0) {
-        scenario.motion.velocity.q_v = u.q_1;
-        scenario.motion.velocity.q_omega = u.q_2;
-      }
+      apply_noise_estimates(m, u, &scenario);
     }
   } else if (o.from == "acfr-car-park") {
     scenario = load_acfr_car_park(input, &report);
@@ -84,11 +77,7 @@ int run_convert(const ConvertOptions& o) {
       print_measurement_estimate(e.measurement);
       fmt::print("  motion noise from {} windows of 2 s on the GPS track: q_v {:.3g} m^2/s (MAD {:.3g}), q_steer {:.3g} "
                  "rad^2 s (MAD {:.3g})\n", e.motion.windows, e.motion.q_1, e.motion.mad_q_1, e.motion.q_2, e.motion.mad_q_2);
-      if (e.measurement.count > 0) {
-        scenario.sensor.sigma_range_m = e.measurement.sigma_range_m;
-        scenario.sensor.sigma_bearing_rad = e.measurement.sigma_bearing_rad;
-      }
-      if (e.motion.windows > 0) scenario.motion.ackermann = {e.motion.q_1, e.motion.q_2};
+      apply_noise_estimate(e, &scenario);
     }
   } else if (o.from == "isam") {
     if (o.estimate_noise) throw InputError("", 0, "--estimate-noise", "the iSAM file states its own covariances; nothing to estimate");

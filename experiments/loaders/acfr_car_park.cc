@@ -292,4 +292,12 @@ CarParkNoiseEstimate estimate_car_park_noise(const Scenario& s) {
   return out;
 }
 
+void apply_noise_estimate(const CarParkNoiseEstimate& e, Scenario* scenario) {
+  if (e.measurement.count > 0) {
+    scenario->sensor.sigma_range_m = e.measurement.sigma_range_m;
+    scenario->sensor.sigma_bearing_rad = e.measurement.sigma_bearing_rad;
+  }
+  if (e.motion.windows > 0) scenario->motion.ackermann = {e.motion.q_1, e.motion.q_2};
+}
+
 }  // namespace arbor

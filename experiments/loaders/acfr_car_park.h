@@ -49,6 +49,9 @@ struct CarParkNoiseEstimate {
   Vec2 gps_to_laser_m = Vec2::Zero();  // lever arm in the vehicle frame (x ahead, y left)
 };
 CarParkNoiseEstimate estimate_car_park_noise(const Scenario& scenario);
+// What `convert --estimate-noise` does with it: the measurement noise and the Ackermann densities replace the
+// documented defaults where they rest on data.
+void apply_noise_estimate(const CarParkNoiseEstimate& estimate, Scenario* scenario);
 
 }  // namespace arbor
 

@@ -162,4 +162,16 @@ MotionNoiseEstimate estimate_motion_noise(const Scenario& s, double window_s, do
   return out;
 }
 
+void apply_noise_estimates(const MeasurementNoiseEstimate& measurement, const MotionNoiseEstimate& motion,
+                           Scenario* scenario) {
+  if (measurement.count > 0) {
+    scenario->sensor.sigma_range_m = measurement.sigma_range_m;
+    scenario->sensor.sigma_bearing_rad = measurement.sigma_bearing_rad;
+  }
+  if (motion.windows > 0) {
+    scenario->motion.velocity.q_v = motion.q_1;
+    scenario->motion.velocity.q_omega = motion.q_2;
+  }
+}
+
 }  // namespace arbor

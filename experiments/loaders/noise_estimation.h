@@ -53,6 +53,11 @@ struct MotionNoiseEstimate {
 // densities (k_*) are left at zero: a rate density is what a short window can tell.
 MotionNoiseEstimate estimate_motion_noise(const Scenario& scenario, double window_s = 1.0, double min_speed = 0.05);
 
+// What `convert --estimate-noise` does with the estimates of a velocity-model dataset (UTIAS): each replaces
+// the scenario's documented default where it rests on data (a count or window above zero).
+void apply_noise_estimates(const MeasurementNoiseEstimate& measurement, const MotionNoiseEstimate& motion,
+                           Scenario* scenario);
+
 }  // namespace arbor
 
 #endif  // ARBOR_EXPERIMENTS_LOADERS_NOISE_ESTIMATION_H_

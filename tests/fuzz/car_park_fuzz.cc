@@ -15,12 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
       LoadReport report;
       Scenario scenario = load_acfr_car_park(dir, &report);
-      const CarParkNoiseEstimate e = estimate_car_park_noise(scenario);
-      if (e.measurement.count > 0) {
-        scenario.sensor.sigma_range_m = e.measurement.sigma_range_m;
-        scenario.sensor.sigma_bearing_rad = e.measurement.sigma_bearing_rad;
-      }
-      if (e.motion.windows > 0) scenario.motion.ackermann = {e.motion.q_1, e.motion.q_2};
+      apply_noise_estimate(estimate_car_park_noise(scenario), &scenario);
       write_scenario(scenario, (fuzz::scratch_dir() / "out.scn").string());
     } catch (const InputError&) {
     }

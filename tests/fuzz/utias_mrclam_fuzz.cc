@@ -16,16 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
       LoadReport report;
       Scenario scenario = load_utias_mrclam(dir, UtiasOptions{}, &report);
-      const MeasurementNoiseEstimate m = estimate_measurement_noise(scenario);
-      const MotionNoiseEstimate u = estimate_motion_noise(scenario, 1.0);
-      if (m.count > 0) {
-        scenario.sensor.sigma_range_m = m.sigma_range_m;
-        scenario.sensor.sigma_bearing_rad = m.sigma_bearing_rad;
-      }
-      if (u.windows > 0) {
-        scenario.motion.velocity.q_v = u.q_1;
-        scenario.motion.velocity.q_omega = u.q_2;
-      }
+      apply_noise_estimates(estimate_measurement_noise(scenario), estimate_motion_noise(scenario, 1.0), &scenario);
       write_scenario(scenario, (fuzz::scratch_dir() / "out.scn").string());
     } catch (const InputError&) {
     }
