@@ -27,6 +27,7 @@
 #include "core/engine/rng.h"
 #include "core/io/scenario.h"
 #include "core/math/chi_square.h"
+#include "core/math/covariance_floor.h"
 #include "core/models/motion_model.h"
 #include "core/models/range_bearing_model.h"
 
@@ -375,6 +376,7 @@ class FastSlam {
       const Mat2 I_KH = Mat2::Identity() - K * H_m;
       lm.cov = I_KH * lm.cov * I_KH.transpose() + K * R * K.transpose();
       lm.cov = 0.5 * (lm.cov + lm.cov.transpose());
+      floor_covariance(&lm.cov);
       ARBOR_CHECK(lm.cov(0, 0) > 0.0 && lm.cov.determinant() > 0.0, "landmark {} covariance lost definiteness", lm.id);
       lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
       lm.confirmed |= lm.log_odds >= options_.log_odds_confirm;
@@ -396,6 +398,7 @@ class FastSlam {
       lm.id = p.next_id++;
       lm.mean = range_bearing_inverse(p.pose, measurements[k].z());
       lm.cov = range_bearing_initial_covariance(p.pose, measurements[k].z(), R_);
+      floor_covariance(&lm.cov);  // rank 1 at zero range
       lm.log_odds = static_cast<float>(options_.log_odds_initial);
       lm.confirmed = lm.log_odds >= options_.log_odds_confirm;
       lm.born_scan = scan_index_;

@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/math/angles.h"
+#include "core/math/covariance_floor.h"
 #include "core/models/motion_model.h"
 #include "core/models/range_bearing_model.h"
 
@@ -160,5 +161,23 @@ TEST(MotionModel, PredictionCovarianceIsPositiveDefiniteForAStandingRobot) {
   }
 }
 
+// A zero-range measurement initialises a rank-1 covariance (its bearing moves the point by r dphi = 0);
+// the floor makes it definite, and leaves an ordinary covariance exactly as it was.
+TEST(CovarianceFloor, MakesAZeroRangeInitialisationDefiniteAndLeavesOrdinaryOnesAlone) {
+  const Mat2 R = Vec2(0.1 * 0.1, 0.0087 * 0.0087).asDiagonal();
+  Mat2 zero_range = range_bearing_initial_covariance(Pose2{1.0, 2.0, 0.7}, Vec2(0.0, 0.3), R);
+  EXPECT_LE(zero_range.determinant(), 1e-30);
+  floor_covariance(&zero_range);
+  Eigen::SelfAdjointEigenSolver<Mat2> eigen(zero_range);
+  EXPECT_GT(eigen.eigenvalues()(0), 0.5 * kMinEigenvalueRatio * eigen.eigenvalues()(1));
+  EXPECT_NEAR(eigen.eigenvalues()(1), 0.01, 1e-12);  // the range's variance is kept
+
+  const Mat2 ordinary = range_bearing_initial_covariance(Pose2{1.0, 2.0, 0.7}, Vec2(7.0, 0.3), R);
+  Mat2 floored = ordinary;
+  floor_covariance(&floored);
+  EXPECT_EQ(floored, ordinary);
+}
+
 }  // namespace
 }  // namespace arbor
+

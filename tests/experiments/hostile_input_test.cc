@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,21 @@ std::function<void(const fs::path&)> scenario_edit(std::string pattern, std::str
   return [=](const fs::path& dir) { mutate(dir / "w.scn", dir / "w.scn", pattern, replacement); };
 }
 
+// The robot stands still for its first four steps and sees every landmark of those scans at range 0: the
+// landmarks start at the sensor and are measured there again.
+void standing_on_its_landmarks(const fs::path& dir) {
+  std::istringstream in(testing::read_file((dir / "w.scn").string()));
+  std::string text;
+  int steps = 0;
+  const std::regex step(R"(^step ([^ ]+) .*)"), z(R"(^z [^ ]+ (.*))");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("step ", 0) == 0) ++steps;
+    if (steps <= 4) line = std::regex_replace(std::regex_replace(line, step, "step $1 0 0 0"), z, "z 0 $1");
+    text += line + "\n";
+  }
+  write_text(dir / "w.scn", text);
+}
+
 // A copy of a shipped dataset with one file's first line matching pattern replaced.
 std::function<void(const fs::path&)> dataset_edit(std::string dataset, std::string file, std::string pattern,
                                                   std::string replacement) {
@@ -87,6 +103,9 @@ std::vector<HostileCase> hostile_cases() {
       {"aborts", "zero_range_fastslam1_nn", scenario_edit("^z [^ \n]+", "z 0"), kRun + "--filter fastslam1 --assoc nn", 0, ""},
       {"aborts", "zero_range_jcbb", scenario_edit("^z [^ \n]+", "z 0"), kRun + "--assoc jcbb", 0, ""},
       {"aborts", "zero_range_locality", scenario_edit("^z [^ \n]+", "z 0"), kRun + "--assoc locality", 0, ""},
+      {"aborts", "standing_on_its_landmarks_fastslam1_nn", standing_on_its_landmarks, kRun + "--filter fastslam1 --assoc nn", 0, ""},
+      {"aborts", "standing_on_its_landmarks_fastslam2_known", standing_on_its_landmarks, kRun, 0, ""},
+      {"aborts", "standing_on_its_landmarks_jcbb", standing_on_its_landmarks, kRun + "--assoc jcbb", 0, ""},
       {"aborts", "denormal_sigma_range", scenario_edit(R"(^(sensor [^ \n]+ [^ \n]+ [^ \n]+) [^ \n]+)", "$1 5e-324"), kRun, 2,
        "w.scn" + field_re + "sigma_range'"},
       {"aborts", "sigmas_at_their_lower_limits_nn",
