@@ -15,6 +15,7 @@
 
 #include "core/check.h"
 #include "core/math/angles.h"
+#include "core/models/range_bearing_model.h"
 #include "variants/smoothing/factor_graph.h"
 
 namespace arbor::internal {
@@ -78,10 +79,16 @@ class RangeBearingError {
     using std::atan2;
     using std::sqrt;
     const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
-    T q = dx * dx + dy * dy;
-    if (q < T(1e-12)) q = T(1e-12);  // as range_bearing_predict: finite at the sensor itself
+    const T q = dx * dx + dy * dy;
     Eigen::Matrix<T, 2, 1> e;
-    e << sqrt(q) - z_.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z_.y());
+    if (q < T(kMinSquaredRange)) {
+      // At the sensor itself (a zero-range measurement starts its landmark there) the bearing and its
+      // derivative (0/0) are undefined, and one NaN Jacobian failed the whole solve: the factor holds the
+      // floored range alone there, as range_bearing_predict does for the filter.
+      e << sqrt(T(kMinSquaredRange)) - z_.x(), T(0.0);
+    } else {
+      e << sqrt(q) - z_.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z_.y());
+    }
     Eigen::Map<Eigen::Matrix<T, 2, 1>> r(residual);
     r = sqrt_information_.template cast<T>() * e;
     return true;
