@@ -10,6 +10,7 @@
 #include <ceres/ceres.h>
 
 #include "core/check.h"
+#include "core/io/field_limits.h"
 #include "core/models/range_bearing_model.h"
 #include "variants/smoothing/factors.h"
 #include "variants/smoothing/smoother.h"
@@ -318,6 +319,11 @@ SmootherResult solve_factor_graph(const FactorGraph& graph, const SmootherOption
   }
   result.landmarks.reserve(data.landmark_count);
   for (int j = 0; j < data.landmark_count; ++j) {
+    // A landmark seen only from the point it sits on (zero-range measurements) has no information at all:
+    // a prior as wide as the format's coordinates keeps its covariance finite (about 1e18 m^2) instead of
+    // writing NaN to map.csv. Any landmark observed from elsewhere is not touched.
+    if (!(information[j].determinant() > 0.0))
+      information[j] += Mat2::Identity() / (scenario_limits::kMaxCoordinate * scenario_limits::kMaxCoordinate);
     Mat2 covariance = information[j].inverse();
     covariance = 0.5 * (covariance + covariance.transpose());
     result.landmarks.push_back({graph.landmarks[j].id, landmark_at(j), covariance, observations[j]});
