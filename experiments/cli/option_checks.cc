@@ -21,12 +21,16 @@ bool finite_number(const std::string& text) {
   return end == text.c_str() + text.size() && errno != ERANGE && std::isfinite(value);
 }
 
-// True when text reads as a number at all, finite or not ("nan", "inf", "1e999").
-bool any_number(const std::string& text) {
-  if (text.empty()) return false;
+// True when text is one number, finite or not ("nan", "inf", "1e999"); *value is what strtod read.
+bool read_number(const std::string& text, double* value) {
   char* end = nullptr;
-  std::strtod(text.c_str(), &end);
-  return end == text.c_str() + text.size();
+  *value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size();
+}
+
+bool any_number(const std::string& text) {
+  double value = 0.0;
+  return read_number(text, &value);
 }
 
 const CLI::Validator kFinite(
@@ -62,17 +66,6 @@ const CLI::Validator& open_probability() {
       "", "probability");
   return check;
 }
-
-namespace {
-
-// The value as a double when text is one number; the type check reports anything else.
-bool read_number(const std::string& text, double* value) {
-  char* end = nullptr;
-  *value = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size();
-}
-
-}  // namespace
 
 CLI::Validator at_least(double minimum) {
   return CLI::Validator(
