@@ -132,8 +132,7 @@ Scenario read_scenario(const std::string& path) {
       step.time_s = time_field(in, 1, "time");
       if (step.time_s < last_time) in.fail("time", fmt::format("time goes backwards ({} after {})", step.time_s, last_time));
       last_time = step.time_s;
-      step.control = {number_within(in, 2, "u1", -lim::kMaxControl, lim::kMaxControl), number_within(in, 3, "u2", -lim::kMaxControl, lim::kMaxControl),
-                      number_within(in, 4, "u3", -lim::kMaxControl, lim::kMaxControl)};
+      step.control = {control_field(in, 2, "u1"), control_field(in, 3, "u2"), control_field(in, 4, "u3")};
       if (s.motion.kind != MotionModelKind::kOdometry && step.control[2] < 0.0) in.fail("u3", "dt must not be negative");
       s.steps.push_back(std::move(step));
     } else if (kind == "truth") {

@@ -58,9 +58,8 @@ const CLI::Validator& unsigned_number() {
 const CLI::Validator& open_probability() {
   static const CLI::Validator check(
       [](std::string& value) {
-        char* end = nullptr;
-        const double p = std::strtod(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size()) return std::string();  // the type check says it
+        double p = 0.0;
+        if (!read_number(value, &p)) return std::string();  // the type check says it
         return p > 0.0 && p < 1.0 ? std::string() : "must lie strictly between 0 and 1 (got " + value + ")";
       },
       "", "probability");

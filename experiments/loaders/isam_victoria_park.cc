@@ -24,12 +24,12 @@ std::int64_t id_field(const TextReader& in, std::size_t i, std::string_view name
 
 // A variance within the squares of scenario_limits' sigmas, and an off-diagonal entry within the largest
 // variance: the smoother inverts these matrices, and the inverse of diag(1e300, 1e300) is not finite.
+namespace lim = scenario_limits;
+
 double variance_field(const TextReader& in, std::size_t i, std::string_view name) {
-  namespace lim = scenario_limits;
   return number_within(in, i, name, lim::kMinSigmaBearing * lim::kMinSigmaBearing, lim::kMaxSigma * lim::kMaxSigma);
 }
 double covariance_field(const TextReader& in, std::size_t i, std::string_view name) {
-  namespace lim = scenario_limits;
   return number_within(in, i, name, -lim::kMaxSigma * lim::kMaxSigma, lim::kMaxSigma * lim::kMaxSigma);
 }
 
