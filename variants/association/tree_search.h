@@ -40,6 +40,21 @@ struct TreeScratch {
   std::vector<char> prior_ok;
   std::vector<int> prior_begin, prior_list;
   std::vector<GatedPair> completion;
+  // Pose-free locality search: anchor_levels[k * n + g] has bit l set when a feature of g's locality passes
+  // the constraints at level l > k with g at level k; anchors lists every (k, g) with such a partner, the
+  // most levels first; level_pairs holds the measured pairs (k < l) by distance.
+  std::vector<std::uint64_t> anchor_levels, anchor_features;
+  struct Anchor {
+    int reach;  // pairings its locality can add: levels below with a partner, at most the partners
+    int k, g;
+  };
+  std::vector<Anchor> anchors;
+  struct LevelPair {
+    double distance;
+    double variance;  // of the distance, from the two measured points (as binary() projects it)
+    int k, l;
+  };
+  std::vector<LevelPair> level_pairs;
 };
 
 struct TreeSettings {
