@@ -2,6 +2,7 @@
 #ifndef ARBOR_VARIANTS_REGISTRY_IMPL_H_
 #define ARBOR_VARIANTS_REGISTRY_IMPL_H_
 
+#include "variants/association/locality_relocalizer.h"
 #include "variants/registry.h"
 
 namespace arbor {
@@ -13,7 +14,9 @@ std::unique_ptr<Filter> make_with_strategy(TypeList<Strategies...>, std::string_
   std::unique_ptr<Filter> filter;
   const auto make = [&]<class S>() {
     if constexpr (S::kTraits.in_filter)
-      if (!filter && assoc == S::kName) filter = std::make_unique<FilterImpl<Map, S>>(scenario, options);
+      if (!filter && assoc == S::kName)
+        filter = std::make_unique<FilterImpl<Map, S>>(
+            scenario, options, options.relocalize ? make_locality_relocalizer(options.association) : Relocalizer{});
   };
   (make.template operator()<Strategies>(), ...);
   return filter;

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -45,6 +47,11 @@ struct Particle {
   std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
 };
 
+// A pose-free search of a map for one scan (the locality tree, from variants/): fills the pose world_T_robot
+// that its answer implies and returns how many measurements it pairs (0 without a verified pose). The
+// problem's candidates are the map's landmarks, ascending id, with their world positions and localities.
+using Relocalizer = std::function<int(const AssociationProblem& problem, Pose2* world_T_robot)>;
+
 // What one step did, summed over particles where it is a count.
 struct StepStats {
   double n_eff = 0.0;       // effective sample size after weighting, before any resampling
@@ -53,6 +60,7 @@ struct StepStats {
   std::int64_t tests = 0;
   std::int64_t budget_exhausted = 0;  // particles whose search stopped at its budget (best answer so far)
   std::size_t best_landmarks = 0;
+  bool relocalized = false;  // this scan re-seeded every particle at a relocalised pose
 };
 
 // Weighted mean and covariance of the particle poses (heading by circular mean, differences wrapped); between
@@ -65,11 +73,14 @@ struct PoseEstimate {
 template <LandmarkMap Map, AssociationStrategy Assoc>
 class FastSlam {
  public:
-  FastSlam(const Scenario& scenario, const FastSlamOptions& options)
+  // relocalizer: needed (non-empty) when options.relocalize is set.
+  FastSlam(const Scenario& scenario, const FastSlamOptions& options, Relocalizer relocalizer = {})
       : options_(options), motion_(scenario.motion), sensor_(scenario.sensor), strategy_(options.association),
-        arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
+        arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
+        relocalizer_(std::move(relocalizer)) {
     const std::string why = options.validate();
     ARBOR_CHECK(why.empty(), "{}", why);
+    ARBOR_CHECK(!options.relocalize || relocalizer_, "relocalize is set but no relocalizer was given");
     R_ = sensor_.R();
     const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
     log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
@@ -120,6 +131,7 @@ class FastSlam {
     for (std::size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(weights_[i]);
     stats_.n_eff = last_n_eff_;
     stats_.best_landmarks = particles_[best_particle()].map.size();
+    if (options_.relocalize && step.has_scan) relocalize_if_lost(step);
     ++step_index_;
     scan_index_ += step.has_scan;
   }
@@ -167,6 +179,9 @@ class FastSlam {
     return e;
   }
 
+  // Scans at which every particle was re-seeded at a relocalised pose.
+  std::int64_t relocalizations() const { return relocalizations_; }
+
   MapMemoryStats memory_stats() const {
     MapMemoryStats total;
     for (const auto& p : particles_) total += p.map.memory_stats();
@@ -179,6 +194,7 @@ class FastSlam {
     std::int64_t step_hypotheses = 0;
     std::int64_t step_tests = 0;
     bool step_budget_exhausted = false;
+    int step_paired_settled = 0;  // this scan's measurements paired with a settled landmark (relocalisation)
   };
 
   // A landmark that this scan updates (paired) or creates (new): a working copy, written back once.
@@ -251,6 +267,7 @@ class FastSlam {
   void update_particle(ParticleState& p, const ScenarioStep& step, int index, Scratch& s) {
     p.step_hypotheses = p.step_tests = 0;
     p.step_budget_exhausted = false;
+    p.step_paired_settled = 0;
     const bool fastslam2 = options_.version == FilterVersion::kFastSlam2;
     const bool per_control = options_.motion_sampling == MotionSampling::kPerControl;
     motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
@@ -270,6 +287,8 @@ class FastSlam {
     gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
     collect_touched(p, step.measurements, s);
+    if (options_.relocalize)
+      for (int t : s.touched_of) p.step_paired_settled += t >= 0 && settled(s.touched[t].landmark);
     double log_weight = fastslam2 ? propose_and_draw(p, step.measurements, index, s) : 0.0;
     log_weight += update_landmarks(p, step.measurements, s, /*weight=*/!fastslam2);
     log_weight += add_new_landmarks(p, step.measurements, s);
@@ -516,6 +535,84 @@ class FastSlam {
     s.nearby.clear();
   }
 
+  // A kidnapped robot (or one whose drift defeats the gates at a loop closure) pairs little of what it sees
+  // with the map it had: its particles predict landmarks where none are. The best particle's settled map
+  // (landmarks started kRelocalizeSettledScans scans ago or more) is then searched without a prior for this
+  // scan. The newer landmarks are left out: after a kidnap they are copies of what the robot sees, placed at
+  // the wrong pose, which the particle pairs from the next scan on and which would confirm the wrong pose.
+  // A found pose re-seeds the particles only if it is elsewhere, pairs more measurements than the particle
+  // paired with settled landmarks (by kRelocalizeMargin), and the next scan finds the same correction (a
+  // coincidence in the map rarely repeats after the odometry's motion). Every particle then takes the best
+  // particle's map, the pose, and a covariance of kRelocalizeSigma; the weights start equal.
+  void relocalize_if_lost(const ScenarioStep& step) {
+    const int m = static_cast<int>(step.measurements.size());
+    const ParticleState& best = particles_[best_particle()];
+    if (m < options_.relocalize_min_pairings || (!pending_correction_ && 2 * best.step_paired_settled >= m)) {
+      pending_correction_.reset();
+      return;
+    }
+    AssociationProblem& problem = relocalize_problem_;
+    problem.measurements.clear();
+    for (const Measurement& z : step.measurements) problem.measurements.push_back({z.z(), z.signature, z.truth_id});
+    problem.candidates.clear();
+    problem.R = R_;
+    problem.P = Mat3::Zero();
+    problem.signature_sigma = sensor_.sigma_signature;
+    best.map.for_each([&](const Landmark& lm) {
+      if (!lm.confirmed || !settled(lm)) return;
+      AssociationCandidate c;
+      Mat2 H_m;
+      c.z_hat = range_bearing_predict(best.pose, lm.mean, &H_m, &c.H_pose);
+      c.S = H_m * lm.cov * H_m.transpose() + R_;
+      c.id = lm.id;
+      c.truth_label = lm.truth_label;
+      c.position = lm.mean;
+      c.position_cov = lm.cov;
+      c.signature = lm.signature;
+      c.locality = lm.locality;
+      problem.candidates.push_back(c);
+    });
+    Pose2 found;
+    const int pairings = problem.candidates.size() < 2 ? 0 : relocalizer_(problem, &found);
+    const auto near = [](const Pose2& a, const Pose2& b) {
+      return (a.position() - b.position()).norm() <= kRelocalizeAgreementM &&
+             std::abs(wrap_angle(a.theta - b.theta)) <= kRelocalizeAgreementRad;
+    };
+    if (pairings < options_.relocalize_min_pairings || pairings < best.step_paired_settled + kRelocalizeMargin ||
+        near(found, best.pose)) {
+      pending_correction_.reset();
+      return;
+    }
+    // The correction world -> world that carries the particle's pose onto the found one. The particle moves
+    // by the odometry, as the robot does, so at the next scan the last correction, applied to the particle's
+    // pose, predicts where the search should find it again.
+    const Pose2 correction = found.compose(best.pose.between(Pose2{}));
+    const bool confirmed = pending_correction_ && near(pending_correction_->compose(best.pose), found);
+    pending_correction_ = correction;
+    if (!confirmed) return;
+    pending_correction_.reset();
+    const ParticleState source = best;
+    const Mat3 covariance = kRelocalizeSigma.cwiseAbs2().asDiagonal();
+    for (auto& p : particles_) {
+      p = source;
+      p.pose = found;
+      p.pose_covariance = covariance;
+      p.log_weight = 0.0;
+    }
+    weights_.assign(particles_.size(), 1.0 / particles_.size());
+    last_n_eff_ = static_cast<double>(particles_.size());
+    stats_.relocalized = true;
+    ++relocalizations_;
+  }
+
+  bool settled(const Landmark& lm) const { return scan_index_ - lm.born_scan >= kRelocalizeSettledScans; }
+
+  static constexpr int kRelocalizeSettledScans = 10;
+  static constexpr int kRelocalizeMargin = 3;
+  static constexpr double kRelocalizeAgreementM = 1.0;
+  static constexpr double kRelocalizeAgreementRad = 0.1;
+  inline static const Vec3 kRelocalizeSigma{0.2, 0.2, 0.03};  // [m, m, rad]: a fitted pose from ~5 pairings
+
   bool expired(const Landmark& lm) const {
     return !lm.confirmed && options_.provisional_scans > 0 && scan_index_ - lm.born_scan >= options_.provisional_scans;
   }
@@ -538,6 +635,10 @@ class FastSlam {
   std::int32_t scan_index_ = 0;  // scans before this step: a landmark's born_scan
   double last_n_eff_ = 0.0;
   StepStats stats_;
+  Relocalizer relocalizer_;
+  AssociationProblem relocalize_problem_;
+  std::optional<Pose2> pending_correction_;  // the last scan's unconfirmed relocalisation, as a correction
+  std::int64_t relocalizations_ = 0;
 };
 
 }  // namespace arbor

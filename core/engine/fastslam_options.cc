@@ -61,6 +61,8 @@ std::string FastSlamOptions::validate() const {
   if (association.max_work < 1) return fmt::format("search budget (max work) must be at least 1 (got {})", association.max_work);
   if (provisional_scans < 0) return fmt::format("provisional scans must be 0 (keep) or positive (got {})", provisional_scans);
   if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
+  if (relocalize && relocalize_min_pairings < 3)
+    return fmt::format("relocalisation needs at least 3 pairings to trust a pose (got {})", relocalize_min_pairings);
   const double k = association.known_gate_probability;
   if (!(k > 0.0 && k <= 1.0)) return fmt::format("known-association gate probability must lie in (0, 1] (got {})", k);
   return "";

@@ -67,6 +67,13 @@ struct FastSlamOptions {
   double evidence_range_margin_m = 1.0;
   double evidence_bearing_margin_rad = 0.05;
 
+  // Relocalisation and loop closing (issue 12): at a scan where the best particle pairs under half of the
+  // measurements, its settled map is searched without a prior (the locality tree, given to the engine by the
+  // registry); a pose that pairs at least relocalize_min_pairings measurements, and more than the particle
+  // itself did, found again at the next scan with the same correction, re-seeds every particle there.
+  bool relocalize = false;
+  int relocalize_min_pairings = 5;
+
   // Returns an empty string when valid, else what is wrong (Ceres's Options::IsValid idea).
   std::string validate() const;
 };

@@ -24,6 +24,8 @@ class Filter {
   // The best particle's association decisions, one entry per scan with measurements or removals, oldest
   // first; core/metrics/decision_score.h scores them against ground truth.
   virtual std::vector<StepDecisions> best_decisions() const = 0;
+  // Scans at which the particles were re-seeded at a relocalised pose (FastSlamOptions::relocalize).
+  virtual std::int64_t relocalizations() const = 0;
   // Summed over all particles; shared nodes are counted once per particle that references them.
   virtual MapMemoryStats memory_stats() const = 0;
   virtual std::string map_name() const = 0;
@@ -33,7 +35,8 @@ class Filter {
 template <LandmarkMap Map, AssociationStrategy Assoc>
 class FilterImpl final : public Filter {
  public:
-  FilterImpl(const Scenario& scenario, const FastSlamOptions& options) : engine_(scenario, options) {}
+  FilterImpl(const Scenario& scenario, const FastSlamOptions& options, Relocalizer relocalizer = {})
+      : engine_(scenario, options, std::move(relocalizer)) {}
 
   void step(const ScenarioStep& step) override { engine_.step(step); }
   const StepStats& last_step_stats() const override { return engine_.last_step_stats(); }
@@ -52,6 +55,7 @@ class FilterImpl final : public Filter {
   std::vector<StepDecisions> best_decisions() const override {
     return engine_.particle(engine_.best_particle()).decisions.to_vector();
   }
+  std::int64_t relocalizations() const override { return engine_.relocalizations(); }
   MapMemoryStats memory_stats() const override { return engine_.memory_stats(); }
   std::string map_name() const override { return std::string(Map::kName); }
   std::string association_name() const override { return std::string(Assoc::kName); }

@@ -85,6 +85,14 @@ void add_run_command(CLI::App& app, CommandAction* action) {
                   "with --assoc known")
       ->check(at_least(0))
       ->capture_default_str();
+  cmd->add_flag("--relocalize", config->options.relocalize,
+                "Relocalise a lost robot: when the best particle pairs under half a scan, search its settled map "
+                "with the pose-free locality tree; a pose that pairs more, found again at the next scan, re-seeds "
+                "every particle (a kidnapped robot, or a loop closure the gates miss)");
+  cmd->add_option("--relocalize-min-pairings", config->options.relocalize_min_pairings,
+                  "Pairings a relocalised pose must explain")
+      ->check(at_least(3))
+      ->capture_default_str();
   cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
       ->required();
   cmd->add_flag("--quiet", *quiet, "No progress line");

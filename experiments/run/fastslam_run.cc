@@ -104,6 +104,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"log_odds_prune", config.options.log_odds_prune},
                  {"log_odds_confirm", config.options.log_odds_confirm},
                  {"provisional_scans", config.options.provisional_scans},
+                 {"relocalize", config.options.relocalize},
+                 {"relocalize_min_pairings", config.options.relocalize_min_pairings},
                  {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
                  {"likelihood", std::string(to_string(config.options.likelihood))},
                  {"student_dof", config.options.student_dof},
@@ -138,6 +140,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["hypotheses"] = hypotheses;
   r["compatibility_tests"] = tests;
   r["budget_exhausted"] = budget_exhausted;
+  r["relocalizations"] = filter->relocalizations();
   r["map_bytes_per_particle"] = memory.bytes / particles;
   r["map_shared_fraction"] = memory.bytes ? double(memory.shared_bytes) / memory.bytes : 0.0;
   r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -230,8 +230,8 @@ const std::vector<std::string>& known_metrics() {
       "ate_rmse_m", "budget_exhausted", "compatibility_tests", "dead_reckoning_ate_m", "hypotheses",
       "landmark_rmse_m", "landmarks", "map_bytes_per_particle", "map_shared_fraction", "n_eff_mean",
       "nees_in_band_fraction", "nees_mean", "nees_median", "observed_true_landmarks", "peak_rss_bytes",
-      "provisional_landmarks", "rejected_measurements", "resamples", "scenario_duration_s", "spurious_landmarks",
-      "step_time_median_s", "step_time_p95_s", "steps", "true_landmarks", "wall_time_s",
+      "provisional_landmarks", "rejected_measurements", "relocalizations", "resamples", "scenario_duration_s",
+      "spurious_landmarks", "step_time_median_s", "step_time_p95_s", "steps", "true_landmarks", "wall_time_s",
       // arbor smooth only
       "associations_used", "build_time_s", "factors", "final_cost", "gradient_max_norm", "initial_cost",
       "iterations", "linear_solver_used", "marginals_time_s", "parameters", "pose_marginals", "poses", "residuals",

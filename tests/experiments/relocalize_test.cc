@@ -1,0 +1,71 @@
+// The filter's relocalisation (FastSlamOptions::relocalize, issue 12 deliverable 4): a kidnapped robot is
+// found again by the pose-free locality search of its settled map; a robot that is not lost is left alone.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "experiments/sim/simulator.h"
+#include "variants/registry.h"
+
+namespace arbor {
+namespace {
+
+constexpr int kKidnapScan = 200;  // kidnap_time_s / dt_s: carried back to where it was at scan 100
+
+Scenario kidnapped_world(bool kidnap) {
+  SimulationOptions o;
+  o.steps = 260;
+  o.seed = 1;
+  o.kidnap_time_s = kidnap ? kKidnapScan * o.dt_s : -1.0;
+  return simulate(o);
+}
+
+struct Outcome {
+  std::vector<double> error_m;  // per step: the best particle's distance from the true position
+  std::int64_t relocalizations = 0;
+};
+
+Outcome run(const Scenario& scenario, bool relocalize, int threads = 2) {
+  FastSlamOptions options;
+  options.particles = 100;
+  options.seed = 1;
+  options.threads = threads;
+  options.relocalize = relocalize;
+  const std::unique_ptr<Filter> filter = make_filter("tree", "jcbb", scenario, options);
+  Outcome out;
+  for (const ScenarioStep& step : scenario.steps) {
+    filter->step(step);
+    const Pose2 best = filter->best_trajectory().back().pose;
+    out.error_m.push_back((best.position() - step.truth_pose->position()).norm());
+  }
+  out.relocalizations = filter->relocalizations();
+  return out;
+}
+
+// Measured at commit time (uniform world, seed 1, JCBB, 100 particles): in the 50 scans before the kidnap
+// the error is at most 0.35 m; with relocalisation it is 0.20 m two scans after the kidnap (re-seeded there)
+// and at most 0.30 m from ten scans after it to the end; without, 46 m ten scans after it. The full study
+// (20 seeds, two worlds) is experiments/scripts/kidnap_study.sh.
+TEST(Relocalize, AKidnappedRobotIsFoundAgainWithinTenScans) {
+  const Scenario scenario = kidnapped_world(true);
+  const Outcome lost = run(scenario, false);
+  const Outcome found = run(scenario, true);
+  EXPECT_LT(found.error_m[kKidnapScan - 1], 1.0) << "before the kidnap";
+  EXPECT_GT(lost.error_m[kKidnapScan + 10], 10.0) << "without relocalisation the robot stays lost";
+  EXPECT_EQ(found.relocalizations, 1);
+  for (std::size_t k = kKidnapScan + 10; k < scenario.steps.size(); ++k)
+    EXPECT_LT(found.error_m[k], 1.0) << "scan " << k;
+  // The relocalisation runs serially on the combined particles: the run stays identical across thread counts.
+  EXPECT_EQ(run(scenario, true, 1).error_m, found.error_m);
+}
+
+TEST(Relocalize, ARobotThatIsNotLostIsNeverReseeded) {
+  const Scenario scenario = kidnapped_world(false);
+  const Outcome plain = run(scenario, false);
+  const Outcome guarded = run(scenario, true);
+  EXPECT_EQ(guarded.relocalizations, 0);
+  EXPECT_EQ(guarded.error_m, plain.error_m) << "searching without re-seeding must change nothing";
+}
+
+}  // namespace
+}  // namespace arbor
