@@ -5,12 +5,13 @@
 # relocalisations that should not happen. A run whose result.json exists is skipped. Then:
 #   /usr/bin/python3 analysis/kidnap.py OUT
 # Usage: experiments/scripts/kidnap_study.sh OUT [ARBOR_BINARY]
-# Scale with SEEDS, WORLDS.
+# Scale with SEEDS, WORLDS; RELOCALIZE_ARGS is added to the relocalising runs (e.g. "--relocalize-min-pairings 4").
 set -euo pipefail
 out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
 arbor=$(realpath "${2:-build/bin/arbor}")
 seeds=${SEEDS:-$(seq 1 20)}
 worlds=${WORLDS:-"uniform rooms"}
+read -r -a relocalize_args <<< "${RELOCALIZE_ARGS:-}"
 cd "$(dirname "$0")/../.."
 mkdir -p "$out/scenarios"
 
@@ -25,7 +26,7 @@ for w in $worlds; do
       [ -f "$scn" ] || "$arbor" simulate --world "$w" --landmarks 200 --seed "$s" "${kidnap[@]}" --out "$scn" > /dev/null
       common=(--scenario "$scn" --filter fastslam2 --assoc jcbb --particles 100 --seed "$s" --threads 2)
       once "$out/runs/$w-$kind-s$s-off" run "${common[@]}"
-      once "$out/runs/$w-$kind-s$s-relocalize" run "${common[@]}" --relocalize
+      once "$out/runs/$w-$kind-s$s-relocalize" run "${common[@]}" --relocalize "${relocalize_args[@]}"
     done
   done
 done
