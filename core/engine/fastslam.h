@@ -454,31 +454,41 @@ class FastSlam {
     const ViewMargin margin = uncertainty_margin(P);
     gather_nearby(p, pose, s, margin.range_m);
     AssociationProblem& problem = s.problem;
-    problem.measurements.clear();
-    for (const Measurement& m : step.measurements) problem.measurements.push_back({m.z(), m.signature, m.truth_id});
-    problem.candidates.clear();
+    begin_problem(step.measurements, P, &problem);
     s.candidate_of.clear();
-    problem.R = R_;
-    problem.P = P;
-    problem.signature_sigma = sensor_.sigma_signature;
     for (std::size_t j = 0; j < s.nearby.size(); ++j) {
-      const Landmark& lm = s.nearby[j];
-      AssociationCandidate c;
-      Mat2 H_m;
-      c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
+      const AssociationCandidate c = candidate(s.nearby[j], pose);
       // The oracle must find the landmark an id names wherever the estimate puts it: were it left out, a
       // second landmark would start for the same id. Every other strategy sees only what could be in view.
       if (!Assoc::kTraits.uses_ground_truth && !in_candidate_view(c.z_hat, margin)) continue;
-      c.id = lm.id;
-      c.truth_label = lm.truth_label;
-      c.S = H_m * lm.cov * H_m.transpose() + R_;
-      c.position = lm.mean;
-      c.position_cov = lm.cov;
-      c.signature = lm.signature;
-      c.locality = lm.locality;
       problem.candidates.push_back(c);
       s.candidate_of.push_back(static_cast<int>(j));
     }
+  }
+
+  // The problem's measurements, noise and pose covariance P; no candidates yet.
+  void begin_problem(const std::vector<Measurement>& measurements, const Mat3& P, AssociationProblem* problem) const {
+    problem->measurements.clear();
+    for (const Measurement& m : measurements) problem->measurements.push_back({m.z(), m.signature, m.truth_id});
+    problem->candidates.clear();
+    problem->R = R_;
+    problem->P = P;
+    problem->signature_sigma = sensor_.sigma_signature;
+  }
+
+  // Landmark lm as an association candidate seen from pose.
+  AssociationCandidate candidate(const Landmark& lm, const Pose2& pose) const {
+    AssociationCandidate c;
+    Mat2 H_m;
+    c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
+    c.id = lm.id;
+    c.truth_label = lm.truth_label;
+    c.S = H_m * lm.cov * H_m.transpose() + R_;
+    c.position = lm.mean;
+    c.position_cov = lm.cov;
+    c.signature = lm.signature;
+    c.locality = lm.locality;
+    return c;
   }
 
   // s.nearby: every landmark in the query box around pose, ascending id (the map concept's visit order).
@@ -552,25 +562,9 @@ class FastSlam {
       return;
     }
     AssociationProblem& problem = relocalize_problem_;
-    problem.measurements.clear();
-    for (const Measurement& z : step.measurements) problem.measurements.push_back({z.z(), z.signature, z.truth_id});
-    problem.candidates.clear();
-    problem.R = R_;
-    problem.P = Mat3::Zero();
-    problem.signature_sigma = sensor_.sigma_signature;
+    begin_problem(step.measurements, Mat3::Zero(), &problem);
     best.map.for_each([&](const Landmark& lm) {
-      if (!lm.confirmed || !settled(lm)) return;
-      AssociationCandidate c;
-      Mat2 H_m;
-      c.z_hat = range_bearing_predict(best.pose, lm.mean, &H_m, &c.H_pose);
-      c.S = H_m * lm.cov * H_m.transpose() + R_;
-      c.id = lm.id;
-      c.truth_label = lm.truth_label;
-      c.position = lm.mean;
-      c.position_cov = lm.cov;
-      c.signature = lm.signature;
-      c.locality = lm.locality;
-      problem.candidates.push_back(c);
+      if (lm.confirmed && settled(lm)) problem.candidates.push_back(candidate(lm, best.pose));
     });
     Pose2 found;
     const int pairings = problem.candidates.size() < 2 ? 0 : relocalizer_(problem, &found);
