@@ -1,4 +1,4 @@
-// Quantiles and peak RSS.
+// Quantiles, medians and peak RSS.
 #include "core/metrics/run_statistics.h"
 
 #include <sys/resource.h>
@@ -14,6 +14,15 @@ double quantile(std::vector<double> values, double q) {
   const std::size_t lo = static_cast<std::size_t>(position);
   const std::size_t hi = std::min(lo + 1, values.size() - 1);
   return values[lo] + (position - lo) * (values[hi] - values[lo]);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + mid, v.end());
+  const double upper = v[mid];
+  if (v.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + mid));
 }
 
 std::int64_t peak_rss_bytes() {

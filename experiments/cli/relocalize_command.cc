@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 
 #include "core/io/input_error.h"
+#include "core/metrics/run_statistics.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/option_checks.h"
@@ -87,12 +88,6 @@ struct Tally {
   int success = 0;
   std::vector<double> seconds, hypotheses;
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 int run_relocalize(const RelocalizeArgs& a) {
   WorldOptions wo;

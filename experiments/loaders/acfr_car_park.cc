@@ -9,6 +9,7 @@
 
 #include "core/io/field_limits.h"
 #include "core/io/text_reader.h"
+#include "core/metrics/run_statistics.h"
 #include "core/metrics/trajectory_metrics.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/loaders/loader_util.h"

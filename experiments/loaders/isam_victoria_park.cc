@@ -10,6 +10,7 @@
 
 #include "core/io/field_limits.h"
 #include "core/io/text_reader.h"
+#include "core/metrics/run_statistics.h"
 #include "core/models/odometry_model.h"
 #include "experiments/loaders/noise_estimation.h"
 

@@ -5,18 +5,10 @@
 #include <cmath>
 #include <map>
 
+#include "core/metrics/run_statistics.h"
 #include "core/models/range_bearing_model.h"
 
 namespace arbor {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  const double upper = v[mid];
-  if (v.size() % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + mid));
-}
 
 double robust_sigma(std::vector<double> e) {
   if (e.empty()) return 0.0;

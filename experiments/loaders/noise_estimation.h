@@ -14,7 +14,6 @@ namespace arbor {
 
 // 1.4826 * median(|e - median(e)|); 0 for an empty input.
 double robust_sigma(std::vector<double> errors);
-double median(std::vector<double> values);
 
 struct MeasurementNoiseEstimate {
   std::int64_t count = 0;
