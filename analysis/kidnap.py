@@ -9,9 +9,14 @@ Usage: /usr/bin/python3 analysis/kidnap.py OUT   (writes OUT/kidnap.csv and OUT/
 """
 import csv
 import json
-import math
+import os
 import pathlib
 import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from arbor_results import read_scenario_truth, read_tum  # noqa: E402
 
 RECOVERED_M = 1.0   # position error under which the robot counts as found again, or
 BASELINE_FACTOR = 2.0  # this factor times its median error over the BASELINE_SCANS scans before the kidnap
@@ -19,44 +24,16 @@ BASELINE_SCANS = 20    # (some worlds' filters drift past RECOVERED_M on their o
 WITHIN_SCANS = 10   # the issue's target: recovered within this many scans of the kidnap
 
 
-def read_truth(path):
-    """Times and true (x, y) of a scenario's steps, and its kidnap time (None without one)."""
-    times, truth, kidnap, t = [], [], None, None
-    with open(path) as f:
-        for line in f:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "meta" and parts[1] == "kidnap_time_s":
-                kidnap = float(parts[2])
-            elif parts[0] == "step":
-                t = float(parts[1])
-            elif parts[0] == "truth":
-                times.append(t)
-                truth.append((float(parts[1]), float(parts[2])))
-    return times, truth, kidnap
-
-
-def read_tum(path):
-    poses = {}
-    with open(path) as f:
-        for line in f:
-            v = line.split()
-            if v and not v[0].startswith("#"):
-                poses[round(float(v[0]), 6)] = (float(v[1]), float(v[2]))
-    return poses
-
-
-def recovery(run, scenario):
-    """(scans from the kidnap to the first error under RECOVERED_M or None, the error WITHIN_SCANS scans after
-    the kidnap, the final error); the first two are None without a kidnap."""
-    times, truth, kidnap = read_truth(scenario)
+def recovery(run, scenario, kidnap):
+    """(scans from the kidnap to the first error under the recovery threshold or None, the error WITHIN_SCANS
+    scans after the kidnap, the final error); the first two are None without a kidnap (kidnap: its time)."""
+    truth = read_scenario_truth(scenario)[0]
     est = read_tum(run / "trajectory.tum")
-    errors = []
-    for t, (x, y) in zip(times, truth):
-        e = est.get(round(t, 6))
-        if e is not None:
-            errors.append((t, math.hypot(e[0] - x, e[1] - y)))
+    # Steps are matched by time to the microsecond: the trajectory holds every step with a truth pose.
+    truth["key"] = truth.t.round(6)
+    est["key"] = est.t.round(6)
+    both = truth.merge(est[["key", "x", "y"]], on="key", suffixes=("", "_est"))
+    errors = list(zip(both.t, np.hypot(both.x_est - both.x, both.y_est - both.y)))
     if kidnap is None:
         return None, None, errors[-1][1]
     before = sorted([e for t, e in errors if t < kidnap][-BASELINE_SCANS:])
@@ -74,7 +51,9 @@ def main():
             continue
         world, kind, seed, mode = run.name.split("-")
         result = json.loads((run / "result.json").read_text())
-        scans, error_10, final_error = recovery(run, out / "scenarios" / f"{world}-{kind}-{seed}.scn")
+        kidnap = result["scenario"].get("kidnap_time_s")
+        scans, error_10, final_error = recovery(run, out / "scenarios" / f"{world}-{kind}-{seed}.scn",
+                                                None if kidnap is None else float(kidnap))
         rows.append({"world": world, "kidnap": kind == "kidnap", "seed": int(seed[1:]), "relocalize": mode == "relocalize",
                      "recovery_scans": "" if scans is None else scans,
                      "error_after_10_scans_m": "" if error_10 is None else round(error_10, 3),
