@@ -11,6 +11,7 @@
 
 #include "bench/live_bytes.h"
 #include "bench/map_world.h"
+#include "core/types/box2.h"
 #include "variants/registry.h"
 
 namespace arbor::bench {

@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "core/engine/landmark.h"
+#include "core/types/landmark.h"
 #include "core/engine/rng.h"
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "core/models/range_bearing_model.h"
 
 namespace arbor::bench {

@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "core/engine/landmark.h"
+#include "core/types/landmark.h"
 #include "core/math/eigen_types.h"
 
 namespace arbor {

@@ -27,7 +27,8 @@
 #include <cstddef>
 #include <string_view>
 
-#include "core/engine/landmark.h"
+#include "core/types/box2.h"
+#include "core/types/landmark.h"
 
 namespace arbor {
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/engine/landmark.h"
-#include "core/math/pose2.h"
+#include "core/types/step_decisions.h"
+#include "core/types/timed_pose.h"
 
 namespace arbor {
 
@@ -68,21 +68,6 @@ class PersistentHistory {
   }
 
   Node* head_ = nullptr;
-};
-
-struct TimedPose {
-  double time_s = 0.0;
-  Pose2 pose;
-};
-
-// One scan's association decisions as the particle applied them: per measurement the landmark it updated
-// or created, or kNoLandmark where the measurement was judged spurious (clutter); and the landmarks the
-// scan's negative evidence removed. Replayed, the record tells which landmarks the map held at every scan,
-// which is what scoring the decisions outside the filter needs (core/metrics/decision_score.h).
-struct StepDecisions {
-  std::int64_t step = 0;
-  std::vector<LandmarkId> landmarks;
-  std::vector<LandmarkId> erased;
 };
 
 using PoseHistory = PersistentHistory<TimedPose>;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/io/field_limits.h"
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/engine/landmark.h"
-#include "core/engine/persistent_history.h"
+#include "core/types/landmark.h"
+#include "core/types/timed_pose.h"
 
 namespace arbor {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/engine/persistent_history.h"
-#include "core/io/scenario.h"
+#include "core/types/step_decisions.h"
+#include "core/types/scenario.h"
 #include "core/metrics/association_score.h"
 
 namespace arbor {

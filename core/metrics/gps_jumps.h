@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

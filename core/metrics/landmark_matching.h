@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/engine/landmark.h"
-#include "core/io/scenario.h"
+#include "core/types/landmark.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

@@ -6,9 +6,9 @@
 #include <optional>
 #include <vector>
 
-#include "core/engine/landmark.h"
-#include "core/engine/persistent_history.h"
-#include "core/io/scenario.h"
+#include "core/types/landmark.h"
+#include "core/types/timed_pose.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "experiments/loaders/load_report.h"
 #include "experiments/loaders/noise_estimation.h"
 

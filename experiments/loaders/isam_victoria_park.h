@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

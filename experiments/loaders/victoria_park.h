@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "experiments/loaders/load_report.h"
 
 namespace arbor {

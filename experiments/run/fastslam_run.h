@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/fastslam_options.h"
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/engine/landmark.h"
+#include "core/types/landmark.h"
 #include "core/engine/persistent_history.h"
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "core/metrics/trajectory_metrics.h"
 
 namespace arbor {

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "variants/smoothing/smoother.h"
 
 namespace arbor {

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "experiments/sim/world.h"
 
 namespace arbor {

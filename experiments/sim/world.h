@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 

@@ -7,7 +7,7 @@
 #include "core/engine/persistent_history.h"
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
-#include "core/engine/landmark.h"
+#include "core/types/landmark.h"
 #include "core/math/chi_square.h"
 
 namespace arbor {

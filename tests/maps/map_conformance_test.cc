@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/engine/map_concept.h"
+#include "core/types/box2.h"
 #include "variants/maps/hamt_map.h"
 #include "variants/maps/persistent_tree_map.h"
 #include "variants/registry.h"

@@ -8,7 +8,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "core/models/range_bearing_model.h"
 
 namespace arbor::testing {

@@ -9,7 +9,8 @@
 #include <limits>
 #include <new>
 
-#include "core/engine/landmark.h"
+#include "core/types/box2.h"
+#include "core/types/landmark.h"
 #include "variants/maps/node_pool.h"
 
 namespace arbor::internal {

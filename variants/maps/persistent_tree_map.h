@@ -11,7 +11,8 @@
 #include <utility>
 
 #include "core/check.h"
-#include "core/engine/landmark.h"
+#include "core/types/box2.h"
+#include "core/types/landmark.h"
 #include "core/engine/map_concept.h"
 #include "variants/maps/node_pool.h"
 #include "variants/maps/persistent_node.h"

@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "core/engine/map_concept.h"
+#include "core/types/box2.h"
 
 namespace arbor {
 

@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "core/io/scenario.h"
+#include "core/types/scenario.h"
 #include "variants/smoothing/factor_graph.h"
 
 namespace arbor {

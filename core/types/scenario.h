@@ -1,7 +1,7 @@
 // A scenario: everything a run consumes, simulated or real, in one in-memory form (the text format is in
 // docs/scenario_format.md and core/io/scenario_format.h).
-#ifndef ARBOR_CORE_IO_SCENARIO_H_
-#define ARBOR_CORE_IO_SCENARIO_H_
+#ifndef ARBOR_CORE_TYPES_SCENARIO_H_
+#define ARBOR_CORE_TYPES_SCENARIO_H_
 
 #include <cmath>
 #include <cstdint>
@@ -14,6 +14,8 @@
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
 #include "core/models/motion_model.h"
+#include "core/models/sensor_model.h"
+#include "core/types/timed_pose.h"
 
 namespace arbor {
 
@@ -38,27 +40,8 @@ struct ScenarioStep {
   std::vector<Measurement> measurements;
 };
 
-struct SensorModel {
-  double max_range_m = 30.0;
-  double min_range_m = 0.0;
-  double fov_rad = 2.0 * kPi;  // full field of view, centred on the heading
-  double sigma_range_m = 0.1;
-  double sigma_bearing_rad = 0.01;
-  double sigma_signature = std::numeric_limits<double>::quiet_NaN();  // NaN: signatures not used
-  Mat2 R() const { return Vec2(sigma_range_m * sigma_range_m, sigma_bearing_rad * sigma_bearing_rad).asDiagonal(); }
-  bool in_view(const Vec2& z) const {
-    return z.x() <= max_range_m && z.x() >= min_range_m && std::abs(z.y()) <= 0.5 * fov_rad;
-  }
-};
-
 struct TruthLandmark {
   std::int32_t id = 0;
-  Vec2 position = Vec2::Zero();
-};
-
-// A position-only evaluation track (GPS), at its own times.
-struct TimedPosition {
-  double time_s = 0.0;
   Vec2 position = Vec2::Zero();
 };
 
@@ -82,4 +65,4 @@ struct Scenario {
 
 }  // namespace arbor
 
-#endif  // ARBOR_CORE_IO_SCENARIO_H_
+#endif  // ARBOR_CORE_TYPES_SCENARIO_H_

@@ -1,7 +1,7 @@
 // One landmark of one particle's map: a 2x2 EKF (mean, covariance), its existence evidence, an optional
 // signature, and its locality (the landmarks seen in the same scan most often; Ge & Lewis 2006, ch. 9).
-#ifndef ARBOR_CORE_ENGINE_LANDMARK_H_
-#define ARBOR_CORE_ENGINE_LANDMARK_H_
+#ifndef ARBOR_CORE_TYPES_LANDMARK_H_
+#define ARBOR_CORE_TYPES_LANDMARK_H_
 
 #include <algorithm>
 #include <array>
@@ -121,18 +121,6 @@ struct Landmark {
   }
 };
 
-// Axis-aligned box in world coordinates [m], for spatial queries.
-struct Box2 {
-  Vec2 min;
-  Vec2 max;
-  bool contains(const Vec2& p) const {
-    return p.x() >= min.x() && p.x() <= max.x() && p.y() >= min.y() && p.y() <= max.y();
-  }
-  bool intersects(const Box2& o) const {
-    return min.x() <= o.max.x() && o.min.x() <= max.x() && min.y() <= o.max.y() && o.min.y() <= max.y();
-  }
-};
-
 }  // namespace arbor
 
-#endif  // ARBOR_CORE_ENGINE_LANDMARK_H_
+#endif  // ARBOR_CORE_TYPES_LANDMARK_H_
