@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "core/types/landmark.h"
 #include "core/engine/map_concept.h"
 #include "variants/maps/node_pool.h"
+#include "variants/maps/persistent_map_base.h"
 #include "variants/maps/persistent_node.h"
 
 namespace arbor {
@@ -50,6 +52,21 @@ struct HamtCollidingHash {
   std::uint32_t operator()(LandmarkId id) const { return HamtMixHash{}(id) & 0xE0000007u; }
 };
 
+namespace internal {
+// An inner node (count = popcount(bitmap)) or, below the last level, a collision node (count entries sorted
+// by id, bitmap unused). Children are allocated right after the header.
+struct alignas(16) HamtNode {
+  std::atomic<std::uint32_t> rc{1};
+  std::uint16_t bitmap = 0;
+  std::uint16_t count = 0;
+  std::uint32_t leaves = 0;  // landmarks below
+  std::uint32_t inners = 0;  // inner and collision nodes below, this one included
+  FBox box;
+  NodeRef child[];  // flexible array member (a GNU/Clang extension in C++)
+};
+static_assert(sizeof(HamtNode) == 32);
+}  // namespace internal
+
 // The trie consumes the 32-bit hash 4 bits per level from the most significant end, so that with the
 // identity hash slot order is id order. The root starts at the lowest level that holds every hash seen and
 // grows a level when a larger hash arrives (as a persistent vector does), so dense ids of N landmarks give
@@ -63,35 +80,19 @@ struct HamtCollidingHash {
 // when shared (at N = 10^6 and the identity hash: 5 nodes of <= 160 B and one 96 B leaf); insert and erase
 // O(L), each level reallocated at its new size; copy O(1); visit_near O(L + k) nodes for spatially coherent
 // ids (identity hash), plus a sort of the k results for hashes that do not preserve order.
-template <class Hash = HamtIdentityHash>
-class HamtMap {
-  struct Tag {};
+template <class Hash = HamtIdentityHash, int Bits = 4>
+class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal::HamtNode> {
+  using Base = internal::PersistentMapBase<HamtMap<Hash, Bits>, internal::HamtNode>;
+  static_assert(Bits >= 1 && Bits <= 4, "the bitmap holds 16 slots");
+  using Base::acquire;
+  using Base::acquire_all;
+  using Base::leaves;
+  using Base::release;
+  using Base::root_;
 
  public:
   static constexpr std::string_view kName = "trie";
-  using Pool = internal::NodePool<Tag>;
-
-  HamtMap() = default;
-  HamtMap(const HamtMap& o) : root_(o.root_), root_shift_(o.root_shift_) { acquire(root_); }
-  HamtMap(HamtMap&& o) noexcept : root_(std::exchange(o.root_, {})), root_shift_(o.root_shift_) {}
-  HamtMap& operator=(const HamtMap& o) {
-    if (this != &o) {
-      acquire(o.root_);
-      release(std::exchange(root_, o.root_));
-      root_shift_ = o.root_shift_;
-    }
-    return *this;
-  }
-  HamtMap& operator=(HamtMap&& o) noexcept {
-    if (this != &o) {
-      release(std::exchange(root_, std::exchange(o.root_, {})));
-      root_shift_ = o.root_shift_;
-    }
-    return *this;
-  }
-  ~HamtMap() { release(root_); }
-
-  std::size_t size() const { return leaves(root_); }
+  using typename Base::Pool;
 
   // O(L), no allocation. Valid until this map is next modified.
   const Landmark* find(LandmarkId id) const {
@@ -157,111 +158,44 @@ class HamtMap {
     return true;
   }
 
-  template <class F>
-  void for_each(F&& f) const {
-    walk(nullptr, f);
-  }
-  // Landmarks whose mean lies in box, ascending id; subtrees whose bounding box misses the box are skipped.
-  template <class F>
-  void visit_near(const Box2& box, F&& f) const {
-    walk(&box, f);
-  }
-
-  // As PersistentTreeMap::memory_stats: shared = reachable through a node with count > 1.
-  MapMemoryStats memory_stats() const {
-    MapMemoryStats s;
-    if (!root_) return s;
-    // Only unshared nodes are pushed: a shared subtree is summed where it is met, not walked into.
-    std::array<Ref, kStackSize> stack;
-    int top = 0;
-    stack[top++] = root_;
-    while (top > 0) {
-      const Ref r = stack[--top];
-      if (r.is_leaf()) {
-        s.add(1, sizeof(internal::LeafNode), r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
-        continue;
-      }
-      const Node* n = r.as_inner<Node>();
-      if (n->rc.load(std::memory_order_relaxed) > 1) {
-        // Every node of the subtree but its root fills one child slot.
-        const std::size_t slots = std::size_t{n->leaves} + n->inners - 1;
-        s.add(std::size_t{n->leaves} + n->inners,
-              n->leaves * sizeof(internal::LeafNode) + n->inners * sizeof(Node) + slots * sizeof(Ref), true);
-        continue;
-      }
-      s.add(1, bytes(n->count), false);
-      for (int i = 0; i < n->count; ++i) stack[top++] = n->child[i];
-    }
-    return s;
-  }
-
-  static std::int64_t live_nodes() { return Pool::live_nodes(); }
-  static std::int64_t live_bytes() { return Pool::live_bytes(); }
 
  private:
+  friend Base;
   using Ref = internal::NodeRef;
-  static constexpr int kBits = 4;
-  static constexpr int kTopShift = 28;  // 32-bit hash: shifts 28, 24, ..., 0, then collision nodes
-  // Depth-first walks hold at most 16 references per level, 9 levels.
-  static constexpr int kStackSize = 16 * 9 + 1;
+  using Node = internal::HamtNode;
+  static constexpr int kBits = Bits;
+  // The 32-bit hash is read from shift kTopShift down to 0, then collision nodes.
+  static constexpr int kTopShift = (31 / kBits) * kBits;
+  static constexpr std::uint32_t kDigitMask = (1u << kBits) - 1;
 
-  // Inner node (count = popcount(bitmap)) or, below the last level, collision node (count entries sorted by
-  // id, bitmap unused). Children are allocated right after the header.
-  struct alignas(16) Node {
-    std::atomic<std::uint32_t> rc{1};
-    std::uint16_t bitmap = 0;
-    std::uint16_t count = 0;
-    std::uint32_t leaves = 0;  // landmarks below
-    std::uint32_t inners = 0;  // inner and collision nodes below, this one included
-    internal::FBox box;
-    Ref child[];  // flexible array member (a GNU/Clang extension in C++)
-  };
-  static_assert(sizeof(Node) == 32);
+  // The scaffold's hooks (persistent_map_base.h).
+  // Depth-first walks hold at most 2^kBits references per level, one level per digit plus the collision level.
+  static constexpr int kStackSize = (1 << kBits) * (kTopShift / kBits + 2) + 1;
+  static constexpr bool kSlotOrderIsIdOrder = Hash::kOrderPreserving;
+  static std::span<const Ref> children(const Node* n) { return {n->child, n->count}; }
+  static void delete_inner(Node* n) {
+    const int count = n->count;
+    n->~Node();
+    Pool::deallocate(n, bytes(count));
+  }
+  static std::size_t inner_bytes(const Node* n) { return bytes(n->count); }
+  // Every node of the subtree but its root fills one child slot.
+  static internal::SubtreeSize subtree_size(const Node* n) {
+    const std::size_t slots = std::size_t{n->leaves} + n->inners - 1;
+    return {std::size_t{n->leaves} + n->inners,
+            n->leaves * sizeof(internal::LeafNode) + n->inners * sizeof(Node) + slots * sizeof(Ref)};
+  }
 
   static bool fits(std::uint32_t h, int shift) { return shift >= kTopShift || (h >> (shift + kBits)) == 0; }
-  static int digit(std::uint32_t h, int shift) { return static_cast<int>((h >> shift) & 15u); }
+  static int digit(std::uint32_t h, int shift) { return static_cast<int>((h >> shift) & kDigitMask); }
   static int index(std::uint32_t bitmap, std::uint32_t bit) { return std::popcount(bitmap & (bit - 1)); }
   static std::size_t bytes(int count) { return sizeof(Node) + count * sizeof(Ref); }
-  static std::uint32_t leaves(Ref r) { return !r ? 0 : r.is_leaf() ? 1 : r.as_inner<Node>()->leaves; }
   static std::uint32_t inners(Ref r) { return !r || r.is_leaf() ? 0 : r.as_inner<Node>()->inners; }
 
   static Node* new_node(int count) {
     Node* n = new (Pool::allocate(bytes(count))) Node;
     n->count = static_cast<std::uint16_t>(count);
     return n;
-  }
-  static void delete_node(Node* n) {
-    const int count = n->count;
-    n->~Node();
-    Pool::deallocate(n, bytes(count));
-  }
-  static void acquire(Ref r) {
-    if (!r) return;
-    if (r.is_leaf()) internal::ref_inc(r.as_leaf()->rc);
-    else internal::ref_inc(r.as_inner<Node>()->rc);
-  }
-  // Drops one reference; frees every node whose count reaches zero, iteratively.
-  static void release(Ref r) {
-    if (!r) return;
-    if (r.is_leaf()) {
-      internal::release_leaf<Pool>(r.as_leaf());
-      return;
-    }
-    Node* n = r.as_inner<Node>();
-    if (!internal::ref_dec(n->rc)) return;
-    std::array<Node*, kStackSize> stack;
-    int top = 0;
-    stack[top++] = n;
-    while (top > 0) {
-      Node* cur = stack[--top];
-      for (int i = 0; i < cur->count; ++i) {
-        Ref c = cur->child[i];
-        if (!c) continue;  // a slot emptied by a fold just before the node is dropped
-        if (c.is_leaf()) internal::release_leaf<Pool>(c.as_leaf());
-        else if (internal::ref_dec(c.as_inner<Node>()->rc)) stack[top++] = c.as_inner<Node>();
-      }
-      delete_node(cur);
-    }
   }
   static void copy_header(Node* to, const Node* from) {
     to->bitmap = from->bitmap;
@@ -274,10 +208,8 @@ class HamtMap {
     if (internal::ref_unique(n->rc)) return n;
     Node* c = new_node(n->count);
     copy_header(c, n);
-    for (int i = 0; i < n->count; ++i) {
-      c->child[i] = n->child[i];
-      acquire(c->child[i]);
-    }
+    for (int i = 0; i < n->count; ++i) c->child[i] = n->child[i];
+    acquire_all(children(c));
     release(Ref::inner(n));
     return c;
   }
@@ -287,11 +219,9 @@ class HamtMap {
     Node* c = new_node(n->count + 1);
     copy_header(c, n);
     const bool unique = internal::ref_unique(n->rc);
-    for (int i = 0; i < n->count; ++i) {
-      c->child[i < at ? i : i + 1] = n->child[i];
-      if (!unique) acquire(n->child[i]);
-    }
-    if (unique) delete_node(n);
+    for (int i = 0; i < n->count; ++i) c->child[i < at ? i : i + 1] = n->child[i];
+    if (!unique) acquire_all(children(n));
+    if (unique) delete_inner(n);
     else release(Ref::inner(n));
     return c;
   }
@@ -442,7 +372,7 @@ class HamtMap {
       if (!unique) acquire(n->child[i]);
     }
     if (unique) {
-      delete_node(n);
+      delete_inner(n);
     } else {
       acquire(n->child[at]);  // n keeps its own reference to the dropped child; ours goes back to the caller
       release(Ref::inner(n));
@@ -450,34 +380,6 @@ class HamtMap {
     return c;
   }
 
-  template <class F>
-  void walk(const Box2* box, F& f) const {
-    if (!root_) return;
-    std::vector<const Landmark*> found;  // only for hashes that do not preserve id order
-    std::array<Ref, kStackSize> stack;
-    int top = 0;
-    stack[top++] = root_;
-    while (top > 0) {
-      Ref r = stack[--top];
-      if (r.is_leaf()) {
-        const Landmark& lm = *r.as_leaf();
-        if (box == nullptr || box->contains(lm.mean)) {
-          if constexpr (Hash::kOrderPreserving) f(lm);
-          else found.push_back(&lm);
-        }
-        continue;
-      }
-      const Node* n = r.as_inner<Node>();
-      if (box != nullptr && !n->box.intersects(*box)) continue;
-      for (int i = n->count - 1; i >= 0; --i) stack[top++] = n->child[i];
-    }
-    if constexpr (!Hash::kOrderPreserving) {
-      std::sort(found.begin(), found.end(), [](const Landmark* a, const Landmark* b) { return a->id < b->id; });
-      for (const Landmark* lm : found) f(*lm);
-    }
-  }
-
-  Ref root_;
   int root_shift_ = 0;
 };
 

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <span>
 #include <utility>
 
 #include "core/check.h"
@@ -15,9 +16,23 @@
 #include "core/types/landmark.h"
 #include "core/engine/map_concept.h"
 #include "variants/maps/node_pool.h"
+#include "variants/maps/persistent_map_base.h"
 #include "variants/maps/persistent_node.h"
 
 namespace arbor {
+
+namespace internal {
+// An inner node: separator, AVL height, leaf count and bounding box below, two children.
+struct alignas(16) TreeInner {
+  std::atomic<std::uint32_t> rc{1};
+  std::int32_t height = 1;
+  LandmarkId split = 0;
+  std::uint32_t leaves = 0;
+  FBox box;
+  NodeRef child[2];
+};
+static_assert(sizeof(TreeInner) == 48);
+}  // namespace internal
 
 // A leaf-oriented AVL tree keyed by LandmarkId: landmarks sit in the leaves; an inner node holds a separator
 // (every id in its left subtree is <= split < every id in its right one), its height, its leaf count and the
@@ -39,30 +54,9 @@ namespace arbor {
 // Complexity (N landmarks, k results): find O(log N); set/insert/erase O(log N) time and at most
 // height+1 new nodes (48 B each, 96 B per leaf); copy O(1); visit_near O(log N + k) nodes when ids are
 // spatially coherent (ids are a creation serial, so neighbours in id were created near each other).
-class PersistentTreeMap {
-  struct Tag {};
-
+class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, internal::TreeInner> {
  public:
   static constexpr std::string_view kName = "tree";
-  using Pool = internal::NodePool<Tag>;
-
-  PersistentTreeMap() = default;
-  PersistentTreeMap(const PersistentTreeMap& o) : root_(o.root_) { acquire(root_); }
-  PersistentTreeMap(PersistentTreeMap&& o) noexcept : root_(std::exchange(o.root_, {})) {}
-  PersistentTreeMap& operator=(const PersistentTreeMap& o) {
-    if (this != &o) {
-      acquire(o.root_);
-      release(std::exchange(root_, o.root_));
-    }
-    return *this;
-  }
-  PersistentTreeMap& operator=(PersistentTreeMap&& o) noexcept {
-    if (this != &o) release(std::exchange(root_, std::exchange(o.root_, {})));
-    return *this;
-  }
-  ~PersistentTreeMap() { release(root_); }
-
-  std::size_t size() const { return leaves(root_); }
 
   // O(log N), no allocation. The pointer is valid until this map is next modified.
   const Landmark* find(LandmarkId id) const {
@@ -96,66 +90,29 @@ class PersistentTreeMap {
     return true;
   }
 
-  // Ascending id order (in-order walk).
-  template <class F>
-  void for_each(F&& f) const {
-    walk(root_, nullptr, f);
-  }
-  // Landmarks whose mean lies in box, ascending id; subtrees whose bounding box misses the box are skipped.
-  template <class F>
-  void visit_near(const Box2& box, F&& f) const {
-    walk(root_, &box, f);
-  }
-
-  // Nodes and bytes reachable; a node counts as shared if it, or a node above it, has count > 1 (so another
-  // map reaches it). Walks only the unshared part: shared subtrees are summed from their leaf counts.
-  MapMemoryStats memory_stats() const {
-    MapMemoryStats s;
-    if (!root_) return s;
-    // Only unshared nodes are pushed: a shared subtree is summed where it is met, not walked into.
-    std::array<Ref, kStackSize> stack;
-    int top = 0;
-    stack[top++] = root_;
-    while (top > 0) {
-      const Ref r = stack[--top];
-      if (r.is_leaf()) {
-        s.add(1, sizeof(internal::LeafNode), r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
-        continue;
-      }
-      const Inner* n = r.as_inner<Inner>();
-      if (n->rc.load(std::memory_order_relaxed) > 1) {
-        s.add(2 * std::size_t{n->leaves} - 1,
-              n->leaves * sizeof(internal::LeafNode) + (n->leaves - 1) * sizeof(Inner), true);
-        continue;
-      }
-      s.add(1, sizeof(Inner), false);
-      stack[top++] = n->child[0];
-      stack[top++] = n->child[1];
-    }
-    return s;
-  }
-
-  // Nodes of all tree maps alive now (leak tests), and their bytes.
-  static std::int64_t live_nodes() { return Pool::live_nodes(); }
-  static std::int64_t live_bytes() { return Pool::live_bytes(); }
   // Height of the tree (0 for a single leaf; tests check the AVL bound).
   int height() const { return height(root_); }
 
  private:
+  friend PersistentMapBase;
   using Ref = internal::NodeRef;
-  struct alignas(16) Inner {
-    std::atomic<std::uint32_t> rc{1};
-    std::int32_t height = 1;
-    LandmarkId split = 0;
-    std::uint32_t leaves = 0;
-    internal::FBox box;
-    Ref child[2];
-  };
-  static_assert(sizeof(Inner) == 48);
+  using Inner = internal::TreeInner;
+
+  // The scaffold's hooks (persistent_map_base.h).
   // AVL height <= 1.44 log2(N + 2) < 46 for N < 2^31; a depth-first walk holds at most 2 per level.
   static constexpr int kStackSize = 128;
+  static constexpr bool kSlotOrderIsIdOrder = true;  // in-order: every left id <= split < every right id
+  static std::span<const Ref> children(const Inner* n) { return n->child; }
+  static void delete_inner(Inner* n) {
+    n->~Inner();
+    Pool::deallocate(n, sizeof(Inner));
+  }
+  static std::size_t inner_bytes(const Inner*) { return sizeof(Inner); }
+  // A leaf-oriented binary tree of L leaves has L - 1 inner nodes.
+  static internal::SubtreeSize subtree_size(const Inner* n) {
+    return {2 * std::size_t{n->leaves} - 1, n->leaves * sizeof(internal::LeafNode) + (n->leaves - 1) * sizeof(Inner)};
+  }
 
-  static std::uint32_t leaves(Ref r) { return !r ? 0 : r.is_leaf() ? 1 : r.as_inner<Inner>()->leaves; }
   static int height(Ref r) { return !r || r.is_leaf() ? 0 : r.as_inner<Inner>()->height; }
   static internal::FBox box_of(Ref r) {
     if (!r.is_leaf()) return r.as_inner<Inner>()->box;
@@ -164,38 +121,7 @@ class PersistentTreeMap {
     return b;
   }
 
-  static void acquire(Ref r) {
-    if (!r) return;
-    if (r.is_leaf()) internal::ref_inc(r.as_leaf()->rc);
-    else internal::ref_inc(r.as_inner<Inner>()->rc);
-  }
   static Inner* new_inner() { return new (Pool::allocate(sizeof(Inner))) Inner; }
-  static void delete_inner(Inner* n) {
-    n->~Inner();
-    Pool::deallocate(n, sizeof(Inner));
-  }
-  // Drops one reference; frees every node whose count reaches zero, iteratively.
-  static void release(Ref r) {
-    if (!r) return;
-    if (r.is_leaf()) {
-      internal::release_leaf<Pool>(r.as_leaf());
-      return;
-    }
-    Inner* n = r.as_inner<Inner>();
-    if (!internal::ref_dec(n->rc)) return;
-    std::array<Inner*, kStackSize> stack;
-    int top = 0;
-    stack[top++] = n;
-    while (top > 0) {
-      Inner* cur = stack[--top];
-      for (Ref c : cur->child) {
-        if (!c) continue;
-        if (c.is_leaf()) internal::release_leaf<Pool>(c.as_leaf());
-        else if (internal::ref_dec(c.as_inner<Inner>()->rc)) stack[top++] = c.as_inner<Inner>();
-      }
-      delete_inner(cur);
-    }
-  }
   // n (whose reference the caller owns) made writable: itself when unshared, else a copy sharing its children.
   static Inner* writable(Inner* n) {
     if (internal::ref_unique(n->rc)) return n;
@@ -206,8 +132,7 @@ class PersistentTreeMap {
     c->box = n->box;
     c->child[0] = n->child[0];
     c->child[1] = n->child[1];
-    acquire(c->child[0]);
-    acquire(c->child[1]);
+    acquire_all(c->child);
     release(Ref::inner(n));
     return c;
   }
@@ -303,28 +228,6 @@ class PersistentTreeMap {
     refresh(n);
     return n;
   }
-
-  template <class F>
-  static void walk(Ref root, const Box2* box, F& f) {
-    if (!root) return;
-    std::array<Ref, kStackSize> stack;
-    int top = 0;
-    stack[top++] = root;
-    while (top > 0) {
-      Ref r = stack[--top];
-      if (r.is_leaf()) {
-        const Landmark& lm = *r.as_leaf();
-        if (box == nullptr || box->contains(lm.mean)) f(lm);
-        continue;
-      }
-      const Inner* n = r.as_inner<Inner>();
-      if (box != nullptr && !n->box.intersects(*box)) continue;
-      stack[top++] = n->child[1];
-      stack[top++] = n->child[0];
-    }
-  }
-
-  Ref root_;
 };
 
 static_assert(LandmarkMap<PersistentTreeMap>);

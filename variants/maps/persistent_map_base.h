@@ -1,0 +1,173 @@
+// The scaffold every persistent back end stands on: the root reference and its counting (an O(1) copy, a
+// move, a destruction that frees only what no other map reaches), size, memory_stats, and the ordered walk
+// with bounding-box pruning. A back end derives from PersistentMapBase<Itself, Inner> and writes only its
+// node layout and its search (find, set, insert, erase).
+#ifndef ARBOR_VARIANTS_MAPS_PERSISTENT_MAP_BASE_H_
+#define ARBOR_VARIANTS_MAPS_PERSISTENT_MAP_BASE_H_
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "core/engine/map_concept.h"
+#include "core/types/box2.h"
+#include "core/types/landmark.h"
+#include "variants/maps/node_pool.h"
+#include "variants/maps/persistent_node.h"
+
+namespace arbor::internal {
+
+// Nodes and bytes of a whole subtree, its root included.
+struct SubtreeSize {
+  std::size_t nodes = 0;
+  std::size_t bytes = 0;
+};
+
+// What a back end tells the scaffold, as static members (private; it befriends its base): its Inner node
+// has an atomic `rc`, a `leaves` count and an FBox `box` of the means below it, and it gives
+//   children(n)        std::span<const NodeRef>: n's child references in walk order
+//   delete_inner(n)    frees n itself (its children were already let go)
+//   inner_bytes(n)     bytes of n itself
+//   subtree_size(n)    SubtreeSize of n's whole subtree, from n's own counts (a shared part's memory_stats)
+//   kStackSize         the deepest stack of a depth-first walk: children per node times levels, plus one
+//   kSlotOrderIsIdOrder  whether walking children in order visits ascending ids (else the walk sorts)
+template <class Derived, class Inner>
+class PersistentMapBase {
+ public:
+  // Each back end (each instantiation) has its own pool and so its own live-node counters.
+  using Pool = NodePool<Derived>;
+
+  PersistentMapBase() = default;
+  PersistentMapBase(const PersistentMapBase& o) : root_(o.root_) { acquire(root_); }
+  PersistentMapBase(PersistentMapBase&& o) noexcept : root_(std::exchange(o.root_, {})) {}
+  PersistentMapBase& operator=(const PersistentMapBase& o) {
+    if (this != &o) {
+      acquire(o.root_);
+      release(std::exchange(root_, o.root_));
+    }
+    return *this;
+  }
+  PersistentMapBase& operator=(PersistentMapBase&& o) noexcept {
+    if (this != &o) release(std::exchange(root_, std::exchange(o.root_, {})));
+    return *this;
+  }
+  ~PersistentMapBase() { release(root_); }
+
+  std::size_t size() const { return leaves(root_); }
+
+  // Ascending id order.
+  template <class F>
+  void for_each(F&& f) const {
+    walk(nullptr, f);
+  }
+  // Landmarks whose mean lies in box, ascending id; subtrees whose bounding box misses the box are skipped.
+  template <class F>
+  void visit_near(const Box2& box, F&& f) const {
+    walk(&box, f);
+  }
+
+  // Nodes and bytes reachable; a node counts as shared if it, or a node above it, has count > 1 (so another
+  // map reaches it). Only the unshared part is walked: a shared subtree is summed from its root's counts.
+  MapMemoryStats memory_stats() const {
+    MapMemoryStats s;
+    if (!root_) return s;
+    std::array<NodeRef, Derived::kStackSize> stack;
+    int top = 0;
+    stack[top++] = root_;
+    while (top > 0) {
+      const NodeRef r = stack[--top];
+      if (r.is_leaf()) {
+        s.add(1, sizeof(LeafNode), r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
+        continue;
+      }
+      const Inner* n = r.as_inner<Inner>();
+      if (n->rc.load(std::memory_order_relaxed) > 1) {
+        const SubtreeSize sub = Derived::subtree_size(n);
+        s.add(sub.nodes, sub.bytes, true);
+        continue;
+      }
+      s.add(1, Derived::inner_bytes(n), false);
+      for (NodeRef c : Derived::children(n)) stack[top++] = c;
+    }
+    return s;
+  }
+
+  // Nodes (bytes) of all maps of this back end alive now: the leak tests and the memory benchmarks.
+  static std::int64_t live_nodes() { return Pool::live_nodes(); }
+  static std::int64_t live_bytes() { return Pool::live_bytes(); }
+
+ protected:
+  static std::uint32_t leaves(NodeRef r) { return !r ? 0 : r.is_leaf() ? 1 : r.as_inner<Inner>()->leaves; }
+
+  static void acquire(NodeRef r) {
+    if (!r) return;
+    if (r.is_leaf()) ref_inc(r.as_leaf()->rc);
+    else ref_inc(r.as_inner<Inner>()->rc);
+  }
+  // One more reference to each of a copied node's children.
+  static void acquire_all(std::span<const NodeRef> children) {
+    for (NodeRef c : children) acquire(c);
+  }
+  // Drops one reference; frees every node whose count reaches zero, with an explicit stack (no recursion).
+  static void release(NodeRef r) {
+    if (!r) return;
+    if (r.is_leaf()) {
+      release_leaf<Pool>(r.as_leaf());
+      return;
+    }
+    Inner* n = r.as_inner<Inner>();
+    if (!ref_dec(n->rc)) return;
+    std::array<Inner*, Derived::kStackSize> stack;
+    int top = 0;
+    stack[top++] = n;
+    while (top > 0) {
+      Inner* cur = stack[--top];
+      for (NodeRef c : Derived::children(cur)) {
+        if (!c) continue;  // a slot emptied just before the node is dropped
+        if (c.is_leaf()) release_leaf<Pool>(c.as_leaf());
+        else if (ref_dec(c.as_inner<Inner>()->rc)) stack[top++] = c.as_inner<Inner>();
+      }
+      Derived::delete_inner(cur);
+    }
+  }
+
+  NodeRef root_;
+
+ private:
+  template <class F>
+  void walk(const Box2* box, F& f) const {
+    if (!root_) return;
+    std::vector<const Landmark*> found;  // only where slot order is not id order
+    std::array<NodeRef, Derived::kStackSize> stack;
+    int top = 0;
+    stack[top++] = root_;
+    while (top > 0) {
+      const NodeRef r = stack[--top];
+      if (r.is_leaf()) {
+        const Landmark& lm = *r.as_leaf();
+        if (box == nullptr || box->contains(lm.mean)) {
+          if constexpr (Derived::kSlotOrderIsIdOrder) f(lm);
+          else found.push_back(&lm);
+        }
+        continue;
+      }
+      const Inner* n = r.as_inner<Inner>();
+      if (box != nullptr && !n->box.intersects(*box)) continue;
+      const std::span<const NodeRef> children = Derived::children(n);
+      for (auto c = children.rbegin(); c != children.rend(); ++c) stack[top++] = *c;
+    }
+    if constexpr (!Derived::kSlotOrderIsIdOrder) {
+      std::sort(found.begin(), found.end(), [](const Landmark* a, const Landmark* b) { return a->id < b->id; });
+      for (const Landmark* lm : found) f(*lm);
+    }
+  }
+};
+
+}  // namespace arbor::internal
+
+#endif  // ARBOR_VARIANTS_MAPS_PERSISTENT_MAP_BASE_H_
