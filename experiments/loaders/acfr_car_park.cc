@@ -50,39 +50,6 @@ std::vector<LaserScan> read_laser(const std::string& path, char prefix) {
   return scans;
 }
 
-std::vector<ControlSample> read_dead_reckoning(const std::string& path) {
-  TextReader in(path, ",");
-  expect_csv_header(in, {"time_s", "velocity_mps", "steering_rad"});
-  TimeOrder order(/*strict=*/true);
-  std::vector<ControlSample> controls;
-  while (in.next()) {
-    in.expect_fields(3, 3, "dead-reckoning");
-    ControlSample c;
-    c.time_ms = seconds_to_ms(time_field(in, 0, "time_s"));
-    order.check(in, c.time_ms, "time_s");
-    c.u1 = control_field(in, 1, "velocity_mps");
-    c.u2 = in.number(2, "steering_rad");
-    if (std::abs(c.u2) >= 1.2) in.fail("steering_rad", fmt::format("steering {} rad is outside the vehicle's range", c.u2));
-    controls.push_back(c);
-  }
-  if (controls.empty()) throw InputError(path, in.line_number(), "", "no dead-reckoning samples");
-  return controls;
-}
-
-std::vector<TimedPosition> read_gps(const std::string& path) {
-  TextReader in(path, ",");
-  expect_csv_header(in, {"time_s", "x_east_m", "y_north_m"});
-  TimeOrder order(/*strict=*/true);
-  std::vector<TimedPosition> track;
-  while (in.next()) {
-    in.expect_fields(3, 3, "GPS");
-    const double t = time_field(in, 0, "time_s");
-    order.check(in, seconds_to_ms(t), "time_s");
-    track.push_back({t, {coordinate_field(in, 1, "x_east_m"), coordinate_field(in, 2, "y_north_m")}});
-  }
-  return track;
-}
-
 std::vector<TruthLandmark> read_beacons(const std::string& path) {
   TextReader in(path, ",");
   expect_csv_header(in, {"beacon_row", "x_east_m", "y_north_m"});
@@ -194,7 +161,7 @@ std::vector<Measurement> extract_beacons(const std::vector<double>& r, const std
 }
 
 Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const BeaconExtraction& extraction) {
-  const auto controls = read_dead_reckoning(join_path(dir, "csv/dead_reckoning.csv"));
+  const auto controls = read_ackermann_dead_reckoning(join_path(dir, "csv/dead_reckoning.csv"), {"time_s", false}, "velocity_mps");
   const std::string ranges_path = join_path(dir, "csv/laser_ranges.csv");
   const std::string intensity_path = join_path(dir, "csv/laser_intensity.csv");
   const auto ranges = read_laser(ranges_path, 'r');
@@ -212,7 +179,7 @@ Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const Be
   }
 
   Scenario s;
-  s.truth_track = read_gps(join_path(dir, "csv/gps.csv"));
+  s.truth_track = read_position_track(join_path(dir, "csv/gps.csv"), {"time_s", false}, "x_east_m", "y_north_m");
   s.truth_landmarks = read_beacons(join_path(dir, "csv/beacons_groundtruth.csv"));
   s.metadata["source"] = "acfr-car-park";
   s.metadata["citation"] = "Nieto_Nebot_ACFR_car_park";

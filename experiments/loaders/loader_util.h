@@ -1,4 +1,5 @@
-// Small checks shared by the dataset loaders: CSV headers, clock conversion, time order.
+// What the dataset loaders share: CSV headers, clock conversion, time order, and the readers of the two
+// file kinds more than one dataset has (Ackermann dead reckoning, a GPS track).
 #ifndef ARBOR_EXPERIMENTS_LOADERS_LOADER_UTIL_H_
 #define ARBOR_EXPERIMENTS_LOADERS_LOADER_UTIL_H_
 
@@ -7,8 +8,11 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/io/text_reader.h"
+#include "core/types/timed_pose.h"
+#include "experiments/loaders/step_merger.h"
 
 namespace arbor {
 
@@ -36,6 +40,24 @@ class TimeOrder {
   bool first_ = true;
   std::int64_t last_ms_ = 0;
 };
+
+// The time column of a loader's CSV file: its name, and whether it holds integer milliseconds (else seconds
+// as a decimal number).
+struct TimeColumn {
+  std::string_view name;
+  bool milliseconds = false;
+};
+
+// Ackermann dead reckoning: columns time, speed [m/s], steering [rad], strictly increasing in time. A
+// steering angle at or past 1.2 rad is an error: tan() of it is meaningless near 90 degrees, and both
+// datasets' cars lock at about 35 degrees. Throws InputError naming file, line and field.
+std::vector<ControlSample> read_ackermann_dead_reckoning(const std::string& path, TimeColumn time,
+                                                         std::string_view speed);
+
+// A position track (GPS): columns time, x, y [m], strictly increasing in time; times are returned in
+// seconds after origin_ms. Throws InputError naming file, line and field.
+std::vector<TimedPosition> read_position_track(const std::string& path, TimeColumn time, std::string_view x,
+                                               std::string_view y, std::int64_t origin_ms = 0);
 
 }  // namespace arbor
 

@@ -14,40 +14,6 @@
 namespace arbor {
 namespace {
 
-std::vector<ControlSample> read_dead_reckoning(const std::string& path) {
-  TextReader in(path, ",");
-  expect_csv_header(in, {"time_ms", "speed_mps", "steering_rad"});
-  TimeOrder order(/*strict=*/true);
-  std::vector<ControlSample> controls;
-  while (in.next()) {
-    in.expect_fields(3, 3, "dead-reckoning");
-    ControlSample c;
-    c.time_ms = time_ms_field(in, 0, "time_ms");
-    order.check(in, c.time_ms, "time_ms");
-    c.u1 = control_field(in, 1, "speed_mps");
-    c.u2 = in.number(2, "steering_rad");
-    // A steering angle at or past 90 degrees makes tan(alpha) meaningless; the ute's lock is about 35 degrees.
-    if (std::abs(c.u2) >= 1.2) in.fail("steering_rad", fmt::format("steering {} rad is outside the vehicle's range", c.u2));
-    controls.push_back(c);
-  }
-  if (controls.empty()) throw InputError(path, in.line_number(), "", "no dead-reckoning samples");
-  return controls;
-}
-
-std::vector<TimedPosition> read_gps(const std::string& path) {
-  TextReader in(path, ",");
-  expect_csv_header(in, {"time_ms", "Lo_m", "La_m"});
-  TimeOrder order(/*strict=*/true);
-  std::vector<TimedPosition> track;
-  while (in.next()) {
-    in.expect_fields(3, 3, "GPS");
-    const std::int64_t t = time_ms_field(in, 0, "time_ms");
-    order.check(in, t, "time_ms");
-    track.push_back({(t - kVictoriaParkOriginMs) / 1000.0, {coordinate_field(in, 1, "Lo_m"), coordinate_field(in, 2, "La_m")}});
-  }
-  return track;
-}
-
 // Rows of one scan share a time stamp; each row is (t [s, relative], range [m], bearing [rad, laser frame
 // 0..pi, 0 = right], diameter [m]).
 std::vector<TimedScan> read_trees(const std::string& path, LoadReport* report) {
@@ -79,10 +45,10 @@ std::vector<TimedScan> read_trees(const std::string& path, LoadReport* report) {
 }  // namespace
 
 Scenario load_victoria_park(const std::string& dir, LoadReport* report, const VictoriaParkTuning& tuning) {
-  const std::vector<ControlSample> controls = read_dead_reckoning(join_path(dir, VictoriaParkFiles::kDeadReckoning));
+  const std::vector<ControlSample> controls = read_ackermann_dead_reckoning(join_path(dir, VictoriaParkFiles::kDeadReckoning), {"time_ms", true}, "speed_mps");
   std::vector<TimedScan> scans = read_trees(join_path(dir, VictoriaParkFiles::kTrees), report);
   Scenario s;
-  s.truth_track = read_gps(join_path(dir, VictoriaParkFiles::kGps));
+  s.truth_track = read_position_track(join_path(dir, VictoriaParkFiles::kGps), {"time_ms", true}, "Lo_m", "La_m", kVictoriaParkOriginMs);
 
   s.metadata["source"] = "victoria-park";
   s.metadata["citation"] = "Guivant_Nebot_IEEE-TRA_2001";
