@@ -7,7 +7,7 @@
 
 #include "core/io/input_error.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Arbor: a benchmark and research framework for landmark-based SLAM (FastSLAM 1.0/2.0)."};

@@ -11,7 +11,7 @@
 #include "core/io/input_error.h"
 #include "core/metrics/association_score.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 #include "variants/association/joint_compatibility.h"
 #include "core/metrics/association_score.h"
 #include "variants/association/problem_generator.h"

@@ -8,7 +8,7 @@
 #include "core/io/scenario_format.h"
 #include "core/metrics/gps_jumps.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 #include "experiments/loaders/acfr_car_park.h"
 #include "experiments/loaders/isam_victoria_park.h"
 #include "experiments/loaders/noise_estimation.h"

@@ -16,7 +16,7 @@
 #include "core/metrics/run_statistics.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 #include "experiments/sim/world.h"
 #include "variants/association/strategy_list.h"
 

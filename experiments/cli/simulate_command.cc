@@ -5,7 +5,7 @@
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
 #include "experiments/cli/commands.h"
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 #include "experiments/sim/simulator.h"
 
 namespace arbor::cli {

@@ -2,7 +2,7 @@
 #include <fmt/core.h>
 
 #include "experiments/cli/commands.h"
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 #include "experiments/sweep/sweep_runner.h"
 #include "experiments/sweep/sweep_spec.h"
 

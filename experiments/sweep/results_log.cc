@@ -34,9 +34,12 @@ std::string csv_escape(const std::string& cell) {
 
 }  // namespace
 
-std::vector<std::string> result_columns(const std::vector<std::string>& metrics) {
+std::vector<std::string> result_columns(const std::vector<std::string>& metrics,
+                                        const std::vector<std::string>& run_options) {
   std::vector<std::string> columns{"key", "status", "error"};
   columns.insert(columns.end(), param_columns().begin(), param_columns().end());
+  // The grid's further run options, after the parameters (before scenario and run_dir).
+  columns.insert(columns.end() - 2, run_options.begin(), run_options.end());
   for (const auto& m : metrics)
     if (std::find(columns.begin(), columns.end(), m) == columns.end()) columns.push_back(m);
   for (const char* c : {"commit", "host", "compiler", "build", "process_wall_s", "exit_code", "finished_at"})
@@ -48,7 +51,7 @@ std::vector<std::pair<std::string, nlohmann::ordered_json>> param_cells(const Ru
   using Json = nlohmann::ordered_json;
   const bool sim = run.dataset.empty();
   const auto sim_only = [&](Json v) { return sim ? v : Json(); };
-  return {
+  std::vector<std::pair<std::string, nlohmann::ordered_json>> cells{
       {"key", run.key()},
       {"dataset", sim ? Json() : Json(run.dataset)},
       {"world", sim_only(run.world)},
@@ -62,9 +65,13 @@ std::vector<std::pair<std::string, nlohmann::ordered_json>> param_cells(const Ru
       {"particles", run.particles > 0 ? Json(run.particles) : Json()},
       {"seed", run.seed},
       {"threads", run.threads},
+  };
+  for (const auto& [name, value] : run.run_options) cells.emplace_back(name, value);
+  cells.insert(cells.end(), {
       {"scenario", sim ? "scenarios/" + run.scenario_name() + ".scn" : run.dataset},
       {"run_dir", "runs/" + run.key()},
-  };
+  });
+  return cells;
 }
 
 std::string cell_text(const nlohmann::ordered_json& value) {

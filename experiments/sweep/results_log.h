@@ -19,7 +19,8 @@ inline constexpr const char* kResultsCsv = "results.csv";
 
 // The columns of every row, in order: key, status, error, the run parameters, the kept metrics, then
 // provenance (commit, host, compiler, build, wall time of the child process, exit code, finish time).
-std::vector<std::string> result_columns(const std::vector<std::string>& metrics);
+std::vector<std::string> result_columns(const std::vector<std::string>& metrics,
+                                        const std::vector<std::string>& run_options = {});
 
 // A row is a JSON object whose members are exactly result_columns(), in that order.
 using ResultRow = nlohmann::ordered_json;

@@ -229,9 +229,11 @@ std::vector<std::string> run_command(const RunParams& run, const std::string& ex
   const std::string scenario = run.dataset.empty() ? out_dir + "/scenarios/" + run.scenario_name() + ".scn" : run.dataset_path;
   const std::string dir = out_dir + "/runs/" + run.key();
   if (run.filter == "smoother") return {exe, "smooth", "--scenario", scenario, "--associations", "known", "--out", dir};
-  return {exe, "run", "--scenario", scenario, "--filter", run.filter, "--map", run.map, "--assoc", run.assoc,
-          "--particles", fmt::format("{}", run.particles), "--seed", fmt::format("{}", run.seed), "--threads",
-          fmt::format("{}", run.threads), "--out", dir};
+  std::vector<std::string> argv{exe, "run", "--scenario", scenario, "--filter", run.filter, "--map", run.map,
+                                "--assoc", run.assoc, "--particles", fmt::format("{}", run.particles), "--seed",
+                                fmt::format("{}", run.seed), "--threads", fmt::format("{}", run.threads), "--out", dir};
+  for (const auto& [name, value] : run.run_options) argv.push_back(fmt::format("--{}={}", name, value));
+  return argv;
 }
 
 SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
@@ -241,7 +243,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   summary.shard_runs = static_cast<int>(mine.size());
   const std::string out = options.out_dir;
   const std::string exe = options.arbor_exe.empty() ? self_executable() : options.arbor_exe;
-  const std::vector<std::string> columns = result_columns(spec.metrics);
+  const std::vector<std::string> columns = result_columns(spec.metrics, spec.run_option_names);
   const std::string shard = fmt::format("{}/{}", options.shard_index, options.shard_count);
 
   if (options.dry_run) {

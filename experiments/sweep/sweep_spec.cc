@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "core/io/input_error.h"
+#include "experiments/options/run_options.h"
 #include "variants/registry.h"
 
 namespace arbor {
@@ -98,6 +99,22 @@ class SpecReader {
       const auto* v = item.as_integer();
       if (!v) fail(line_of(item), field, fmt::format("expected an integer, got {}", type_name(item)));
       check(item, v->get());
+    });
+    return out;
+  }
+
+  // A run option's values as `arbor run` reads them, each with its line: a string, number or boolean, or an
+  // array of them.
+  std::vector<std::pair<int, std::string>> option_values(const toml::node& node, const std::string& field) const {
+    std::vector<std::pair<int, std::string>> out;
+    for_each_item(node, field, [&](const toml::node& item) {
+      std::string text;
+      if (const auto* s = item.as_string()) text = s->get();
+      else if (const auto* i = item.as_integer()) text = fmt::format("{}", i->get());
+      else if (const auto* f = item.as_floating_point()) text = fmt::format("{}", f->get());
+      else if (const auto* b = item.as_boolean()) text = b->get() ? "true" : "false";
+      else fail(line_of(item), field, fmt::format("expected a string, number or boolean, got {}", type_name(item)));
+      out.emplace_back(line_of(item), std::move(text));
     });
     return out;
   }
@@ -199,7 +216,7 @@ std::string sanitize(std::string_view text) {
 
 auto tie(const RunParams& p) {
   return std::tie(p.dataset, p.world, p.world_landmarks, p.world_steps, p.clutter, p.world_seed, p.filter, p.map,
-                  p.assoc, p.particles, p.seed, p.threads);
+                  p.assoc, p.particles, p.seed, p.threads, p.run_options);
 }
 
 }  // namespace
@@ -277,8 +294,11 @@ std::string RunParams::key() const {
     scenario = fmt::format("{}-n{}-t{}-c{}", world, world_landmarks, world_steps, sanitize(fmt::format("{}", clutter)));
     if (world_seed) scenario += fmt::format("-w{}", *world_seed);
   }
-  if (filter == "smoother") return fmt::format("{}__smoother-s{}-t{}", scenario, seed, threads);
-  return fmt::format("{}__{}-{}-{}-m{}-s{}-t{}", scenario, filter, map, assoc, particles, seed, threads);
+  // Further run options, where the grid names any, follow as __name-value_name-value.
+  std::string options;
+  for (const auto& [name, value] : run_options) options += fmt::format("{}{}-{}", options.empty() ? "__" : "_", name, sanitize(value));
+  if (filter == "smoother") return fmt::format("{}__smoother-s{}-t{}{}", scenario, seed, threads, options);
+  return fmt::format("{}__{}-{}-{}-m{}-s{}-t{}{}", scenario, filter, map, assoc, particles, seed, threads, options);
 }
 
 bool operator<(const RunParams& a, const RunParams& b) { return tie(a) < tie(b); }
@@ -383,7 +403,9 @@ SweepSpec read_sweep_spec(const std::string& path) {
 
   // [grid]: the method dimensions.
   const toml::table* grid = table("grid", true);
-  in.only_keys(*grid, "grid", {"filter", "map", "assoc", "particles", "seed", "threads"});
+  std::vector<std::string_view> grid_keys{"filter", "map", "assoc", "particles", "seed", "threads"};
+  for (const std::string& name : cli::sweepable_run_options()) grid_keys.push_back(name);
+  in.only_keys(*grid, "grid", grid_keys);
   const auto need = [&](std::string_view key) -> const toml::node& {
     const toml::node* m = grid->get(key);
     if (!m) in.fail(line_of(*grid), fmt::format("grid.{}", key), "missing field");
@@ -403,10 +425,37 @@ SweepSpec read_sweep_spec(const std::string& path) {
   std::vector<std::int64_t> threads{1};
   if (const auto* n = grid->get("threads")) threads = in.integers(*n, "grid.threads", 1, 1024);
 
+  // Every further run option named in the grid, each value checked as `arbor run` itself would parse it.
+  std::vector<std::vector<std::pair<std::string, std::string>>> option_sets{{}};
+  for (const std::string& name : cli::sweepable_run_options()) {
+    const toml::node* node = grid->get(name);
+    if (!node) continue;
+    spec.run_option_names.push_back(name);
+    const std::string field = "grid." + name;
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const auto& [line, value] : in.option_values(*node, field)) {
+      if (const std::string error = cli::run_option_error(name, value); !error.empty()) in.fail(line, field, error);
+      values.emplace_back(name, value);
+    }
+    std::vector<std::vector<std::pair<std::string, std::string>>> grown;
+    for (const auto& set : option_sets)
+      for (const auto& v : values) {
+        grown.push_back(set);
+        grown.back().push_back(v);
+        if (static_cast<std::int64_t>(grown.size()) > kMaxGridSize) in.fail(line_of(*node), field, "more than a million runs");
+      }
+    option_sets = std::move(grown);
+  }
+
   std::set<std::string> seen;
   const auto add = [&](RunParams p) {
-    if (static_cast<std::int64_t>(spec.runs.size()) >= kMaxGridSize) in.fail(line_of(*grid), "grid", "more than a million runs");
-    if (seen.insert(p.key()).second) spec.runs.push_back(std::move(p));
+    // The smoother takes none of the filter's options: one run, whatever they are.
+    const std::size_t sets = p.filter == "smoother" ? 1 : option_sets.size();
+    for (std::size_t i = 0; i < sets; ++i) {
+      if (static_cast<std::int64_t>(spec.runs.size()) >= kMaxGridSize) in.fail(line_of(*grid), "grid", "more than a million runs");
+      p.run_options = p.filter == "smoother" ? std::vector<std::pair<std::string, std::string>>{} : option_sets[i];
+      if (seen.insert(p.key()).second) spec.runs.push_back(p);
+    }
   };
   for (const auto& base : bases)
     for (const auto& f : filters)

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace arbor {
@@ -25,6 +26,9 @@ struct RunParams {
   std::int64_t particles = 0;    // 0 for the smoother
   std::int64_t seed = 0;
   std::int64_t threads = 1;
+  // Further `arbor run` options the grid varies (name without "--", value as the child gets it), sorted
+  // by name; any option experiments/options/run_options.cc defines and the sweep does not set itself.
+  std::vector<std::pair<std::string, std::string>> run_options;
 
   // Stable, human-readable identity of the parameter tuple; also the run's directory name.
   std::string key() const;
@@ -45,6 +49,7 @@ struct SweepSpec {
   std::optional<int> jobs;           // default parallel runs (--jobs overrides)
   double timeout_s = 0.0;            // per-run wall-clock limit; 0 = none
   std::vector<RunParams> runs;       // the expanded grid, sorted, without duplicates
+  std::vector<std::string> run_option_names;  // the further run options the grid names, sorted
   std::string hash;                  // 16 hex digits over the grid and the metrics: equal specs, equal hash
 };
 

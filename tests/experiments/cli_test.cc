@@ -43,7 +43,7 @@ TEST(Cli, UnknownVariantAndMissingFileExitTwo) {
   EXPECT_EQ(bad_option.exit_code, 2) << bad_option.output;
 }
 
-// Every option of every subcommand is checked in one place (experiments/cli/option_checks.h):
+// Every option of every subcommand is checked in one place (experiments/options/option_checks.h):
 // before, each of these was accepted (a NaN, an infinity, a seed of -1 read as 2^64 - 1, an empty output
 // path), and the probabilities aborted the process inside the chi-square quantile.
 TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) {

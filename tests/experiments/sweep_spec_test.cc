@@ -156,6 +156,48 @@ seed = 1
   EXPECT_EQ(moved.hash, spec.hash);
 }
 
+TEST(SweepSpec, AnyRunOptionIsAGridDimensionCheckedAndPassedToTheChild) {
+  ScratchDir dir("spec");
+  std::string text = kGoodSpec;
+  text += "likelihood = [\"gaussian\", \"student-t\"]\nrelocalize = true\nchi2 = 0.95\n";
+  const SweepSpec spec = spec_from(dir, text);
+  EXPECT_EQ(spec.runs.size(), 2u * (2u * 3 * 4 * 2 * 2 * 3 * 2));
+  EXPECT_EQ(spec.run_option_names, (std::vector<std::string>{"chi2", "likelihood", "relocalize"}));
+  const RunParams& run = spec.runs.back();
+  const std::vector<std::string> argv = run_command(run, "arbor", "OUT");
+  EXPECT_NE(std::find(argv.begin(), argv.end(), "--chi2=0.95"), argv.end());
+  EXPECT_NE(std::find(argv.begin(), argv.end(), "--relocalize=true"), argv.end());
+  EXPECT_EQ(std::count_if(argv.begin(), argv.end(), [](const std::string& a) { return a.rfind("--likelihood=", 0) == 0; }), 1);
+  EXPECT_NE(run.key().find("__chi2-0.95_likelihood-"), std::string::npos) << run.key();
+  // The rows get a column per option, between the parameters and the scenario.
+  const std::vector<std::string> columns = result_columns(spec.metrics, spec.run_option_names);
+  const auto at = std::find(columns.begin(), columns.end(), "likelihood");
+  ASSERT_NE(at, columns.end());
+  EXPECT_EQ(*(at - 2), "threads");
+  // Without run options, keys are what they were (resumed sweeps keep their rows).
+  const SweepSpec plain = spec_from(dir, kGoodSpec);
+  EXPECT_EQ(plain.runs.front().key().find("__", plain.runs.front().key().find("__") + 2), std::string::npos);
+}
+
+TEST(SweepSpec, ABadRunOptionValueNamesItsLineAndFieldWithTheRunCommandsMessage) {
+  ScratchDir dir("spec");
+  std::string text = kGoodSpec;
+  text += "student-dof = [4,\n  0.01]\n";  // 0.01 on line 19 (threads = ... is on 17)
+  InputError e = error_of(dir, text);
+  EXPECT_EQ(e.field(), "grid.student-dof");
+  EXPECT_EQ(e.line(), 19);
+  EXPECT_NE(std::string(e.what()).find("0.01"), std::string::npos) << e.what();
+  text = std::string(kGoodSpec) + "likelihood = \"cauchy\"\n";
+  e = error_of(dir, text);
+  EXPECT_EQ(e.field(), "grid.likelihood");
+  EXPECT_NE(std::string(e.what()).find("cauchy"), std::string::npos) << e.what();
+  // A name `arbor run` does not define, or one the sweep sets itself, is an unknown key.
+  e = error_of(dir, std::string(kGoodSpec) + "chi3 = 0.9\n");
+  EXPECT_EQ(e.field(), "grid.chi3");
+  e = error_of(dir, std::string(kGoodSpec) + "out = \"x\"\n");
+  EXPECT_EQ(e.field(), "grid.out");
+}
+
 TEST(SweepSpec, UnknownBackEndNamesItsLineAndField) {
   ScratchDir dir("spec");
   std::string text = kGoodSpec;

@@ -4,8 +4,8 @@
 //     through, since every comparison with NaN is false);
 //   * an unsigned one has no minus sign (CLI11 reads "-1" into an unsigned 64-bit seed as 2^64 - 1).
 // Ranges stay with each option.
-#ifndef ARBOR_EXPERIMENTS_CLI_OPTION_CHECKS_H_
-#define ARBOR_EXPERIMENTS_CLI_OPTION_CHECKS_H_
+#ifndef ARBOR_EXPERIMENTS_OPTIONS_OPTION_CHECKS_H_
+#define ARBOR_EXPERIMENTS_OPTIONS_OPTION_CHECKS_H_
 
 #include <CLI/CLI.hpp>
 
@@ -28,4 +28,4 @@ void apply_common_option_checks(CLI::App& app);
 
 }  // namespace arbor::cli
 
-#endif  // ARBOR_EXPERIMENTS_CLI_OPTION_CHECKS_H_
+#endif  // ARBOR_EXPERIMENTS_OPTIONS_OPTION_CHECKS_H_

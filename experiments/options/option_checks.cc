@@ -1,5 +1,5 @@
 // The checks shared by every subcommand's options.
-#include "experiments/cli/option_checks.h"
+#include "experiments/options/option_checks.h"
 
 #include <cerrno>
 #include <cmath>

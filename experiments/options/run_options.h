@@ -1,0 +1,40 @@
+// The options of `arbor run` that shape a run, defined once. `arbor run` puts them on its command line; a
+// sweep spec may name any of them as a [grid] dimension, which the sweep checks against these same
+// definitions and hands to each child run as --name=value. A new run option is one add_option in
+// run_options.cc: `arbor run --help`, the sweep spec and the child's argv all follow from it.
+#ifndef ARBOR_EXPERIMENTS_OPTIONS_RUN_OPTIONS_H_
+#define ARBOR_EXPERIMENTS_OPTIONS_RUN_OPTIONS_H_
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "experiments/run/fastslam_run.h"
+
+namespace arbor::cli {
+
+// The options read as names and turned into the engine's enums after parsing (apply_run_choices).
+struct RunChoices {
+  std::string filter = "fastslam2";
+  std::string motion_sampling = "per-scan";
+  std::string likelihood = "gaussian";
+};
+
+// Adds every run option to cmd, bound to config and choices (--scenario and --out included, required).
+void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices);
+
+// Turns the named choices into config's enums; throws InputError naming the option.
+void apply_run_choices(const RunChoices& choices, RunConfig& config);
+
+// The run options a sweep grid may vary: all but those the sweep sets itself, from its scenario and its own
+// grid dimensions (scenario, out, filter, map, assoc, particles, seed, threads). Names without "--".
+const std::vector<std::string>& sweepable_run_options();
+
+// Checks one run option value as `arbor run` would parse `--name=value`; returns CLI11's message, or an
+// empty string when the value is accepted.
+std::string run_option_error(const std::string& name, const std::string& value);
+
+}  // namespace arbor::cli
+
+#endif  // ARBOR_EXPERIMENTS_OPTIONS_RUN_OPTIONS_H_
