@@ -7,43 +7,25 @@
 
 #include <fmt/core.h>
 
+#include "core/enum_names.h"
+
 namespace arbor {
 
 namespace {
 
-// Each option's values with their command-line names; to_string and from_string read the same table.
-template <class E>
-using NameTable = std::array<std::pair<E, std::string_view>, 2>;
-
-constexpr NameTable<FilterVersion> kFilterNames{{{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}}};
-constexpr NameTable<MotionSampling> kSamplingNames{{{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
-constexpr NameTable<Likelihood> kLikelihoodNames{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
-
-template <class E>
-std::string_view name_in(const NameTable<E>& table, E value) {
-  for (const auto& [v, name] : table)
-    if (v == value) return name;
-  return "?";
-}
-
-template <class E>
-bool parse_in(const NameTable<E>& table, std::string_view name, E* value) {
-  for (const auto& [v, n] : table)
-    if (n == name) {
-      *value = v;
-      return true;
-    }
-  return false;
-}
+// Each option's values with their command-line names (core/enum_names.h).
+constexpr EnumNames<FilterVersion, 2> kFilterNames{{{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}}};
+constexpr EnumNames<MotionSampling, 2> kSamplingNames{{{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
+constexpr EnumNames<Likelihood, 2> kLikelihoodNames{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
 
 }  // namespace
 
-std::string_view to_string(FilterVersion version) { return name_in(kFilterNames, version); }
-bool from_string(std::string_view name, FilterVersion* version) { return parse_in(kFilterNames, name, version); }
-std::string_view to_string(MotionSampling sampling) { return name_in(kSamplingNames, sampling); }
-bool from_string(std::string_view name, MotionSampling* sampling) { return parse_in(kSamplingNames, name, sampling); }
-std::string_view to_string(Likelihood likelihood) { return name_in(kLikelihoodNames, likelihood); }
-bool from_string(std::string_view name, Likelihood* likelihood) { return parse_in(kLikelihoodNames, name, likelihood); }
+std::string_view to_string(FilterVersion version) { return name_of(kFilterNames, version); }
+bool from_string(std::string_view name, FilterVersion* version) { return value_named(kFilterNames, name, version); }
+std::string_view to_string(MotionSampling sampling) { return name_of(kSamplingNames, sampling); }
+bool from_string(std::string_view name, MotionSampling* sampling) { return value_named(kSamplingNames, name, sampling); }
+std::string_view to_string(Likelihood likelihood) { return name_of(kLikelihoodNames, likelihood); }
+bool from_string(std::string_view name, Likelihood* likelihood) { return value_named(kLikelihoodNames, name, likelihood); }
 
 std::string FastSlamOptions::validate() const {
   if (particles < 1) return fmt::format("particles must be at least 1 (got {})", particles);

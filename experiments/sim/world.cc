@@ -5,26 +5,17 @@
 #include <cmath>
 
 #include "core/engine/rng.h"
+#include "core/enum_names.h"
 
 namespace arbor {
 
-std::string_view to_string(WorldKind kind) {
-  switch (kind) {
-    case WorldKind::kUniform: return "uniform";
-    case WorldKind::kClustered: return "clustered";
-    case WorldKind::kRooms: return "rooms";
-  }
-  return "?";
-}
+namespace {
+constexpr EnumNames<WorldKind, 3> kWorldNames{
+    {{WorldKind::kUniform, "uniform"}, {WorldKind::kClustered, "clustered"}, {WorldKind::kRooms, "rooms"}}};
+}  // namespace
 
-bool from_string(std::string_view name, WorldKind* kind) {
-  for (WorldKind k : {WorldKind::kUniform, WorldKind::kClustered, WorldKind::kRooms})
-    if (to_string(k) == name) {
-      *kind = k;
-      return true;
-    }
-  return false;
-}
+std::string_view to_string(WorldKind kind) { return name_of(kWorldNames, kind); }
+bool from_string(std::string_view name, WorldKind* kind) { return value_named(kWorldNames, name, kind); }
 
 World make_world(const WorldOptions& o) {
   World w;

@@ -75,25 +75,16 @@ class PersistentMapBase {
   // map reaches it). Only the unshared part is walked: a shared subtree is summed from its root's counts.
   MapMemoryStats memory_stats() const {
     MapMemoryStats s;
-    if (!root_) return s;
-    std::array<NodeRef, Derived::kStackSize> stack;
-    int top = 0;
-    stack[top++] = root_;
-    while (top > 0) {
-      const NodeRef r = stack[--top];
-      if (r.is_leaf()) {
-        s.add(1, sizeof(LeafNode), r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
-        continue;
-      }
-      const Inner* n = r.as_inner<Inner>();
-      if (n->rc.load(std::memory_order_relaxed) > 1) {
-        const SubtreeSize sub = Derived::subtree_size(n);
-        s.add(sub.nodes, sub.bytes, true);
-        continue;
-      }
-      s.add(1, Derived::inner_bytes(n), false);
-      for (NodeRef c : Derived::children(n)) stack[top++] = c;
-    }
+    depth_first([&](const LeafNode* leaf) { s.add(1, sizeof(LeafNode), leaf->rc.load(std::memory_order_relaxed) > 1); },
+                [&](const Inner* n) {
+                  if (n->rc.load(std::memory_order_relaxed) > 1) {
+                    const SubtreeSize sub = Derived::subtree_size(n);
+                    s.add(sub.nodes, sub.bytes, true);
+                    return false;
+                  }
+                  s.add(1, Derived::inner_bytes(n), false);
+                  return true;
+                });
     return s;
   }
 
@@ -139,28 +130,37 @@ class PersistentMapBase {
   NodeRef root_;
 
  private:
-  template <class F>
-  void walk(const Box2* box, F& f) const {
+  // From the root, depth first, children in walk order: on_leaf for every leaf reached, on_inner for every
+  // inner node reached, whose children are visited only when it returns true. No recursion.
+  template <class OnLeaf, class OnInner>
+  void depth_first(OnLeaf&& on_leaf, OnInner&& on_inner) const {
     if (!root_) return;
-    std::vector<const Landmark*> found;  // only where slot order is not id order
     std::array<NodeRef, Derived::kStackSize> stack;
     int top = 0;
     stack[top++] = root_;
     while (top > 0) {
       const NodeRef r = stack[--top];
       if (r.is_leaf()) {
-        const Landmark& lm = *r.as_leaf();
-        if (box == nullptr || box->contains(lm.mean)) {
-          if constexpr (Derived::kSlotOrderIsIdOrder) f(lm);
-          else found.push_back(&lm);
-        }
+        on_leaf(r.as_leaf());
         continue;
       }
       const Inner* n = r.as_inner<Inner>();
-      if (box != nullptr && !n->box.intersects(*box)) continue;
+      if (!on_inner(n)) continue;
       const std::span<const NodeRef> children = Derived::children(n);
       for (auto c = children.rbegin(); c != children.rend(); ++c) stack[top++] = *c;
     }
+  }
+
+  template <class F>
+  void walk(const Box2* box, F& f) const {
+    std::vector<const Landmark*> found;  // only where slot order is not id order
+    depth_first(
+        [&](const Landmark* lm) {
+          if (box != nullptr && !box->contains(lm->mean)) return;
+          if constexpr (Derived::kSlotOrderIsIdOrder) f(*lm);
+          else found.push_back(lm);
+        },
+        [&](const Inner* n) { return box == nullptr || n->box.intersects(*box); });
     if constexpr (!Derived::kSlotOrderIsIdOrder) {
       std::sort(found.begin(), found.end(), [](const Landmark* a, const Landmark* b) { return a->id < b->id; });
       for (const Landmark* lm : found) f(*lm);

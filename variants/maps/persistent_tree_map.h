@@ -194,36 +194,25 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
     n->box = box_of(n->child[0]);
     n->box.grow(box_of(n->child[1]));
   }
+  // Rotates n's child on `side` up into n's place (side 0: a right rotation, 1: a left one) and returns it.
   // n is writable; its children are n's own references.
-  static Inner* rotate_right(Inner* n) {
-    Inner* l = writable(n->child[0].as_inner<Inner>());
-    n->child[0] = l->child[1];
+  static Inner* rotate(Inner* n, int side) {
+    Inner* up = writable(n->child[side].as_inner<Inner>());
+    n->child[side] = up->child[1 - side];
     refresh(n);
-    l->child[1] = Ref::inner(n);
-    refresh(l);
-    return l;
-  }
-  static Inner* rotate_left(Inner* n) {
-    Inner* r = writable(n->child[1].as_inner<Inner>());
-    n->child[1] = r->child[0];
-    refresh(n);
-    r->child[0] = Ref::inner(n);
-    refresh(r);
-    return r;
+    up->child[1 - side] = Ref::inner(n);
+    refresh(up);
+    return up;
   }
   static Inner* rebalance(Inner* n) {
     const int hl = height(n->child[0]), hr = height(n->child[1]);
-    if (hl > hr + 1) {
-      const Inner* l = n->child[0].as_inner<Inner>();
-      if (height(l->child[0]) < height(l->child[1]))
-        n->child[0] = Ref::inner(rotate_left(writable(n->child[0].as_inner<Inner>())));
-      return rotate_right(n);
-    }
-    if (hr > hl + 1) {
-      const Inner* r = n->child[1].as_inner<Inner>();
-      if (height(r->child[1]) < height(r->child[0]))
-        n->child[1] = Ref::inner(rotate_right(writable(n->child[1].as_inner<Inner>())));
-      return rotate_left(n);
+    if (hl > hr + 1 || hr > hl + 1) {
+      const int tall = hl > hr ? 0 : 1;
+      const Inner* t = n->child[tall].as_inner<Inner>();
+      // A tall child leaning inwards first turns outwards: the double rotation.
+      if (height(t->child[tall]) < height(t->child[1 - tall]))
+        n->child[tall] = Ref::inner(rotate(writable(n->child[tall].as_inner<Inner>()), 1 - tall));
+      return rotate(n, tall);
     }
     refresh(n);
     return n;

@@ -3,46 +3,22 @@
 
 #include <fmt/core.h>
 
+#include "core/enum_names.h"
 #include "variants/smoothing/smoother.h"
 
 namespace arbor {
 
-std::string_view to_string(SmootherLoss loss) {
-  switch (loss) {
-    case SmootherLoss::kNone: return "none";
-    case SmootherLoss::kHuber: return "huber";
-    case SmootherLoss::kCauchy: return "cauchy";
-  }
-  return "?";
-}
+namespace {
+constexpr EnumNames<SmootherLoss, 3> kLossNames{
+    {{SmootherLoss::kNone, "none"}, {SmootherLoss::kHuber, "huber"}, {SmootherLoss::kCauchy, "cauchy"}}};
+constexpr EnumNames<SmootherLinearSolver, 2> kSolverNames{{{SmootherLinearSolver::kSparseSchur, "sparse-schur"},
+                                                          {SmootherLinearSolver::kSparseNormalCholesky, "sparse-normal-cholesky"}}};
+}  // namespace
 
-std::string_view to_string(SmootherLinearSolver solver) {
-  switch (solver) {
-    case SmootherLinearSolver::kSparseSchur: return "sparse-schur";
-    case SmootherLinearSolver::kSparseNormalCholesky: return "sparse-normal-cholesky";
-  }
-  return "?";
-}
-
-bool from_string(std::string_view name, SmootherLoss* loss) {
-  for (SmootherLoss l : {SmootherLoss::kNone, SmootherLoss::kHuber, SmootherLoss::kCauchy}) {
-    if (to_string(l) == name) {
-      *loss = l;
-      return true;
-    }
-  }
-  return false;
-}
-
-bool from_string(std::string_view name, SmootherLinearSolver* solver) {
-  for (SmootherLinearSolver s : {SmootherLinearSolver::kSparseSchur, SmootherLinearSolver::kSparseNormalCholesky}) {
-    if (to_string(s) == name) {
-      *solver = s;
-      return true;
-    }
-  }
-  return false;
-}
+std::string_view to_string(SmootherLoss loss) { return name_of(kLossNames, loss); }
+std::string_view to_string(SmootherLinearSolver solver) { return name_of(kSolverNames, solver); }
+bool from_string(std::string_view name, SmootherLoss* loss) { return value_named(kLossNames, name, loss); }
+bool from_string(std::string_view name, SmootherLinearSolver* solver) { return value_named(kSolverNames, name, solver); }
 
 bool SmootherOptions::validate(std::string* why) const {
   const auto fail = [&](std::string message) {
