@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -23,6 +24,13 @@ inline constexpr double kLandmarksPerSquareMetre = 0.01;
 inline constexpr double kStripWidthM = 30.0;
 
 inline double field_side_m(std::int64_t n) { return std::sqrt(static_cast<double>(n) / kLandmarksPerSquareMetre); }
+
+// The largest N the map and step benchmarks run: 10^6, or ARBOR_BENCH_MAX_N (a power of ten; 10^7 needs
+// about 4 GB for the trie or tree and a minute to build each prior map).
+inline std::int64_t bench_max_n() {
+  const char* text = std::getenv("ARBOR_BENCH_MAX_N");
+  return text ? std::max<std::int64_t>(100, std::atoll(text)) : 1000000;
+}
 
 // N landmarks uniform over a square of side field_side_m(n) centred on the origin; ids 0..N-1 in the order
 // of a boustrophedon sweep in strips of kStripWidthM (as a creation serial would number them).

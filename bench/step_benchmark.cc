@@ -1,4 +1,5 @@
-// One FastSLAM step (predict, associate, update, weight, resample) vs N = 10^2..10^6 landmarks at constant
+// One FastSLAM step (predict, associate, update, weight, resample) vs N = 10^2..10^6 landmarks (to
+// ARBOR_BENCH_MAX_N) at constant
 // density, M = 100 particles, for every map back end: the complexity figure of DESIGN.md §3.
 // The particles start from a shared prior map of N landmarks (set_prior_map) and drive a circle through it,
 // so the landmarks in view per scan stay the same whatever N. Step time is the process's CPU time (manual
@@ -100,7 +101,7 @@ void register_all(TypeList<Maps...>) {
         auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_FastSlam_Step<Maps>);
         b->ArgNames({"n", "threads", "particles"})->UseManualTime()->Iterations(kTimedSteps)->Unit(benchmark::kMicrosecond);
         const bool naive = Maps::kName == std::string_view("naive");
-        for (std::int64_t n = 100; n <= 1000000; n *= 10)
+        for (std::int64_t n = 100; n <= bench_max_n(); n *= 10)
           if (!naive || n <= kNaiveMaxN) b->Args({n, threads, particles});
       }(),
       ...);
