@@ -8,9 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "tests/association/test_problems.h"
-#include "variants/association/interpretation_tree.h"
 #include "variants/association/joint_compatibility.h"
-#include "variants/association/locality_tree.h"
+#include "variants/association/tree_strategy.h"
 #include "variants/association/problem_generator.h"
 #include "variants/association/rigid_alignment.h"
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "variants/association/locality_tree.h"
+#include "variants/association/tree_strategy.h"
 
 namespace arbor {
 

@@ -9,11 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "variants/association/interpretation_tree.h"
 #include "variants/association/jcbb.h"
 #include "variants/association/known_association.h"
-#include "variants/association/locality_tree.h"
 #include "variants/association/nearest_neighbor.h"
+#include "variants/association/tree_strategy.h"
 #include "variants/type_list.h"
 
 namespace arbor {
