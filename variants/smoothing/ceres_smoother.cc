@@ -135,28 +135,11 @@ class WarmStart {
       ready_pose_via(f);
       problem_.AddResidualBlock(internal::BetweenError::create(f), nullptr, data_.pose(f.from), data_.pose(f.to));
     }
-    for (; range_bearing_ < graph_.range_bearings.size(); ++range_bearing_) {
-      const RangeBearingFactor& f = graph_.range_bearings[range_bearing_];
-      if (f.pose / chunk > stage) break;
-      ready_pose(f.pose);
-      if (!landmark_ready_[f.landmark]) {
-        const double* x = data_.pose(f.pose);
-        set_landmark(f.landmark, range_bearing_inverse(Pose2{x[0], x[1], x[2]}, f.z));
-      }
-      problem_.AddResidualBlock(internal::RangeBearingError::create(f), loss_, data_.pose(f.pose),
-                                data_.landmark(f.landmark));
-    }
-    for (; point_ < graph_.points.size(); ++point_) {
-      const PointFactor& f = graph_.points[point_];
-      if (f.pose / chunk > stage) break;
-      ready_pose(f.pose);
-      if (!landmark_ready_[f.landmark]) {
-        const double* x = data_.pose(f.pose);
-        set_landmark(f.landmark, Pose2{x[0], x[1], x[2]}.transform(f.p_robot));
-      }
-      problem_.AddResidualBlock(internal::PointError::create(f), loss_, data_.pose(f.pose),
-                                data_.landmark(f.landmark));
-    }
+    add_landmark_factors<internal::RangeBearingError>(
+        graph_.range_bearings, range_bearing_, stage, chunk,
+        [](const Pose2& x, const RangeBearingFactor& f) { return range_bearing_inverse(x, f.z); });
+    add_landmark_factors<internal::PointError>(
+        graph_.points, point_, stage, chunk, [](const Pose2& x, const PointFactor& f) { return x.transform(f.p_robot); });
   }
 
   // True when the factor lists are ordered by stage, which the staged adding above relies on (graphs from
@@ -174,6 +157,23 @@ class WarmStart {
   }
 
  private:
+  // The landmark factors of one kind (range-bearing or point) up to `stage`, from factors[next] on. A
+  // landmark met for the first time starts where its first factor puts it: initial(pose, factor).
+  template <class Error, class Factor, class Initial>
+  void add_landmark_factors(const std::vector<Factor>& factors, std::size_t& next, int stage, int chunk,
+                            const Initial& initial) {
+    for (; next < factors.size(); ++next) {
+      const Factor& f = factors[next];
+      if (f.pose / chunk > stage) break;
+      ready_pose(f.pose);
+      if (!landmark_ready_[f.landmark]) {
+        const double* x = data_.pose(f.pose);
+        set_landmark(f.landmark, initial(Pose2{x[0], x[1], x[2]}, f));
+      }
+      problem_.AddResidualBlock(Error::create(f), loss_, data_.pose(f.pose), data_.landmark(f.landmark));
+    }
+  }
+
   // A pose first seen without odometry to a solved pose keeps the graph's initial value.
   void ready_pose(int i) { pose_ready_[i] = true; }
 

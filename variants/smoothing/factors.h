@@ -37,11 +37,29 @@ Eigen::Matrix<double, N, N> square_root_information(const Eigen::Matrix<double, 
   return llt.matrixL().transpose();
 }
 
+// What every factor shares: the square root of its information and the whitened residual W e, with
+// W^T W = Sigma^-1, so that the squared residual is the Mahalanobis distance.
+template <int N>
+class WhitenedError {
+ protected:
+  explicit WhitenedError(const Eigen::Matrix<double, N, N>& covariance)
+      : sqrt_information_(square_root_information<N>(covariance)) {}
+  template <typename T>
+  bool whiten(const Eigen::Matrix<T, N, 1>& e, T* residual) const {
+    Eigen::Map<Eigen::Matrix<T, N, 1>> r(residual);
+    r = sqrt_information_.template cast<T>() * e;
+    return true;
+  }
+
+ private:
+  Eigen::Matrix<double, N, N> sqrt_information_;
+};
+
 // BetweenFactor: parameters pose_from[3], pose_to[3]; residual 3.
-class BetweenError {
+class BetweenError : public WhitenedError<3> {
  public:
   BetweenError(const Pose2& delta, const Mat3& covariance)
-      : delta_(delta), sqrt_information_(square_root_information<3>(covariance)) {}
+      : WhitenedError(covariance), delta_(delta) {}
 
   template <typename T>
   bool operator()(const T* from, const T* to, T* residual) const {
@@ -54,9 +72,7 @@ class BetweenError {
     const double cd = std::cos(delta_.theta), sd = std::sin(delta_.theta);
     Eigen::Matrix<T, 3, 1> e;
     e << cd * tx + sd * ty, -sd * tx + cd * ty, wrap_angle_t(to[2] - from[2] - T(delta_.theta));
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r = sqrt_information_.template cast<T>() * e;
-    return true;
+    return whiten(e, residual);
   }
 
   static ceres::CostFunction* create(const BetweenFactor& f) {
@@ -65,14 +81,13 @@ class BetweenError {
 
  private:
   Pose2 delta_;
-  Mat3 sqrt_information_;
 };
 
 // RangeBearingFactor: parameters pose[3], landmark[2]; residual 2; bearing error wrapped.
-class RangeBearingError {
+class RangeBearingError : public WhitenedError<2> {
  public:
   RangeBearingError(const Vec2& z, const Mat2& covariance)
-      : z_(z), sqrt_information_(square_root_information<2>(covariance)) {}
+      : WhitenedError(covariance), z_(z) {}
 
   template <typename T>
   bool operator()(const T* pose, const T* landmark, T* residual) const {
@@ -89,9 +104,7 @@ class RangeBearingError {
     } else {
       e << sqrt(q) - z_.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z_.y());
     }
-    Eigen::Map<Eigen::Matrix<T, 2, 1>> r(residual);
-    r = sqrt_information_.template cast<T>() * e;
-    return true;
+    return whiten(e, residual);
   }
 
   static ceres::CostFunction* create(const RangeBearingFactor& f) {
@@ -100,14 +113,13 @@ class RangeBearingError {
 
  private:
   Vec2 z_;
-  Mat2 sqrt_information_;
 };
 
 // PointFactor: parameters pose[3], landmark[2]; residual 2: R(th)^T (m - p) - p_robot.
-class PointError {
+class PointError : public WhitenedError<2> {
  public:
   PointError(const Vec2& p_robot, const Mat2& covariance)
-      : p_robot_(p_robot), sqrt_information_(square_root_information<2>(covariance)) {}
+      : WhitenedError(covariance), p_robot_(p_robot) {}
 
   template <typename T>
   bool operator()(const T* pose, const T* landmark, T* residual) const {
@@ -117,9 +129,7 @@ class PointError {
     const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
     Eigen::Matrix<T, 2, 1> e;
     e << c * dx + s * dy - p_robot_.x(), -s * dx + c * dy - p_robot_.y();
-    Eigen::Map<Eigen::Matrix<T, 2, 1>> r(residual);
-    r = sqrt_information_.template cast<T>() * e;
-    return true;
+    return whiten(e, residual);
   }
 
   static ceres::CostFunction* create(const PointFactor& f) {
@@ -128,22 +138,19 @@ class PointError {
 
  private:
   Vec2 p_robot_;
-  Mat2 sqrt_information_;
 };
 
 // PosePriorFactor: parameters pose[3]; residual 3.
-class PosePriorError {
+class PosePriorError : public WhitenedError<3> {
  public:
   PosePriorError(const Pose2& mean, const Mat3& covariance)
-      : mean_(mean), sqrt_information_(square_root_information<3>(covariance)) {}
+      : WhitenedError(covariance), mean_(mean) {}
 
   template <typename T>
   bool operator()(const T* pose, T* residual) const {
     Eigen::Matrix<T, 3, 1> e;
     e << pose[0] - mean_.x, pose[1] - mean_.y, wrap_angle_t(pose[2] - T(mean_.theta));
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r = sqrt_information_.template cast<T>() * e;
-    return true;
+    return whiten(e, residual);
   }
 
   static ceres::CostFunction* create(const PosePriorFactor& f) {
@@ -152,7 +159,6 @@ class PosePriorError {
 
  private:
   Pose2 mean_;
-  Mat3 sqrt_information_;
 };
 
 }  // namespace arbor::internal
