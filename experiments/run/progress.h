@@ -1,4 +1,7 @@
-// A one-line progress report on stderr for long work: done/total, elapsed, estimated time left.
+// Progress on stderr for long work, one policy for every command. On a terminal the line is rewritten in
+// place, at most twice a second; in a log file (a sweep's child, a batch job) a line is written when the
+// work passes another tenth or ten seconds have gone by, so a log stays short and still shows the job alive.
+// The last line is always written.
 #ifndef ARBOR_EXPERIMENTS_RUN_PROGRESS_H_
 #define ARBOR_EXPERIMENTS_RUN_PROGRESS_H_
 
@@ -8,19 +11,33 @@
 
 namespace arbor {
 
+// Free-form text under that policy (the sweep's line).
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled = true);
+  // fraction: how much of the work is done, in [0, 1]; last: the final line.
+  void show(const std::string& text, double fraction, bool last);
+
+ private:
+  bool enabled_, terminal_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point last_;
+  int last_tenth_ = -1;
+};
+
+// "label: done/total (p%) elapsed, ~left[, extra]".
 class Progress {
  public:
   Progress(std::string label, std::int64_t total, bool enabled);
-  // Reports at most every half second (every 10 % when stderr is not a terminal).
   void update(std::int64_t done, const std::string& extra = "");
   void finish(const std::string& extra = "");
 
  private:
   std::string label_;
   std::int64_t total_;
-  bool enabled_, terminal_;
-  std::chrono::steady_clock::time_point start_, last_;
-  std::int64_t last_decile_ = -1;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+  ProgressLine line_;
 };
 
 }  // namespace arbor

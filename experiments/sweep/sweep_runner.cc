@@ -24,6 +24,7 @@
 #include "core/io/build_info.h"
 #include "core/io/directory_lock.h"
 #include "core/io/input_error.h"
+#include "experiments/run/progress.h"
 #include "experiments/sweep/child_process.h"
 #include "experiments/sweep/results_log.h"
 #include "experiments/sweep/sweep_manifest.h"
@@ -110,26 +111,6 @@ bool run_jobs(std::deque<Job> jobs, int parallel, double timeout_s, double heart
   }
   return true;
 }
-
-// The progress line on stderr: rewritten in place on a terminal; in a log file, one line per ten seconds
-// (and the last one), so a long batch job's log stays readable.
-class ProgressLine {
- public:
-  ProgressLine() : tty_(::isatty(STDERR_FILENO)) {}
-  void show(const std::string& text, bool last) {
-    if (tty_) {
-      fmt::print(stderr, "\r{}\033[K{}", text, last ? "\n" : "");
-      return;
-    }
-    if (!last && Clock::now() - printed_ < std::chrono::seconds(10)) return;
-    fmt::print(stderr, "{}\n", text);
-    printed_ = Clock::now();
-  }
-
- private:
-  bool tty_;
-  Clock::time_point printed_{};
-};
 
 using Json = nlohmann::ordered_json;
 
@@ -340,7 +321,8 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
       const int total = static_cast<int>(sims.size());
       ProgressLine line;
       const bool completed = run_jobs(std::move(sims), jobs, spec.timeout_s, 1.0, [&](int) {
-        line.show(fmt::format("[sweep] simulating scenarios {}/{}", finished, total), finished == total);
+        line.show(fmt::format("[sweep] simulating scenarios {}/{}", finished, total),
+                  static_cast<double>(finished) / total, finished == total);
       });
       if (!completed) {
         summary.interrupted = true;
@@ -394,7 +376,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     line.show(fmt::format("[sweep] {}/{} runs done ({} this session, {} running) · {} failed · elapsed {} · ETA {}",
                           summary.already_done + summary.finished, mine.size(), summary.finished, running,
                           summary.failed, duration_text(elapsed), duration_text(eta)),
-              remaining == 0);
+              to_run > 0 ? static_cast<double>(summary.finished) / to_run : 1.0, remaining == 0);
   });
   summary.interrupted = !completed;
   restore_signals();
