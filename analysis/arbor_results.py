@@ -41,11 +41,29 @@ def load_results(path):
     if df.empty:
         return df
     df = df.drop_duplicates(subset="key", keep="last").reset_index(drop=True)
+    options = run_option_columns(df)
     for c in df.columns:
+        if c in options:
+            continue  # option values stay as the child got them ("student-t", "0.95", "true")
         if c not in ("key", "status", "error", "dataset", "world", "filter", "map", "assoc", "scenario",
                      "run_dir", "commit", "host", "compiler", "build", "finished_at", "termination"):
             df[c] = pd.to_numeric(df[c], errors="coerce")
     return df
+
+
+def run_option_columns(df):
+    """The further `arbor run` options a sweep's grid names (likelihood, chi2, relocalize, ...): the rows put
+    them between threads and scenario."""
+    cols = list(df.columns)
+    if "threads" not in cols or "scenario" not in cols:
+        return []
+    i, j = cols.index("threads"), cols.index("scenario")
+    return cols[i + 1:j]
+
+
+def method_columns(df):
+    """The columns that tell two method configurations apart: filter, map, assoc, and any run option."""
+    return METHOD + run_option_columns(df)
 
 
 def ok_rows(df):
@@ -68,7 +86,7 @@ def lines_for(df, x, min_points=2, collapse_identical_maps=False):
     x values. Yields (label, rows); the label names only the columns that differ between the kept lines.
     With collapse_identical_maps, one line stands for all map back ends where their ATE agrees run for run."""
     df = df[df[x].notna()]
-    by = [c for c in varying(df, METHOD + CONTEXT) if c != x]
+    by = [c for c in varying(df, method_columns(df) + CONTEXT) if c != x]
     if collapse_identical_maps:  # for accuracy figures only: timings do differ between back ends
         by, df = drop_identical_map_backends(df, by, [x, "seed"])
     if not by:
@@ -141,6 +159,24 @@ def fit_loglog(x, y):
     residual = ly - (a + b * lx)
     se = math.sqrt(float(residual @ residual) / (n - 2) / float(((lx - lx.mean()) ** 2).sum()))
     return float(b), float(t_quantile(n - 2) * se), float(a), n
+
+
+def plot_loglog_lines(ax, lines, x, metric):
+    """One line per (label, rows) of `lines` on log-log axes: the mean +- 95 % CI over seeds at each x, and the
+    fitted slope (fit_loglog) drawn through them. Returns (label, slope, ci95, points, summary) per line."""
+    fits = []
+    for name, g in lines:
+        slope, ci, intercept, n = fit_loglog(g[x], g[metric])
+        s = summarize(g, [x], metric)
+        line = ax.errorbar(s[x], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
+                           label=f"{name}: slope {slope:.2f} ± {ci:.2f}" if np.isfinite(ci) else f"{name}: slope {slope:.2f}")
+        if np.isfinite(slope):
+            xs = np.logspace(np.log10(s[x].min()), np.log10(s[x].max()), 50)
+            ax.plot(xs, 10 ** (intercept + slope * np.log10(xs)), color=line[0].get_color(), alpha=0.6)
+        fits.append((name, slope, ci, n, s))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    return fits
 
 
 def summarize(df, by, metric):

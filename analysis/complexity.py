@@ -5,8 +5,6 @@ Reads: results.jsonl columns world_landmarks (or landmarks), step_time_median_s,
 
 import sys
 
-import numpy as np
-
 import arbor_results as ar
 
 FIGURE = "complexity_step_time.png"
@@ -25,20 +23,11 @@ def make(df, out_dir, results_path=None):
         return []
     fig, ax = ar.new_figure()
     rows = []
-    for name, g in lines:
-        slope, ci, intercept, n = ar.fit_loglog(g[x_col], g["step_time_median_s"])
-        s = ar.summarize(g, [x_col], "step_time_median_s")
-        line = ax.errorbar(s[x_col], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
-                           label=f"{name}: slope {slope:.2f} ± {ci:.2f}" if np.isfinite(ci) else f"{name}: slope {slope:.2f}")
-        if np.isfinite(slope):
-            xs = np.logspace(np.log10(s[x_col].min()), np.log10(s[x_col].max()), 50)
-            ax.plot(xs, 10 ** (intercept + slope * np.log10(xs)), color=line[0].get_color(), alpha=0.6)
+    for name, slope, ci, n, s in ar.plot_loglog_lines(ax, lines, x_col, "step_time_median_s"):
         rows.append({"configuration": name, "slope": slope, "ci95": ci, "points": n,
                      "N min": s[x_col].min(), "N max": s[x_col].max(),
                      "step time at N max (s)": s["mean"].iloc[-1]})
         print(f"complexity: {name}: log-log slope {slope:.3f} ± {ci:.3f} (95 % CI, {n} points)")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
     ax.set_xlabel("landmarks in the world (constant density)" if x_col == "world_landmarks" else "landmarks in the map")
     ax.set_ylabel("median FastSLAM step time (s)")
     ax.set_title("Step time vs map size")

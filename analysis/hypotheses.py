@@ -6,8 +6,6 @@ assoc_hypotheses_mean / hypotheses_mean / hypotheses (per step, divided by steps
 
 import sys
 
-import numpy as np
-
 import arbor_results as ar
 
 FIGURE = "hypotheses_vs_map_size.png"
@@ -30,18 +28,9 @@ def make(df, out_dir, results_path=None):
         return []
     fig, ax = ar.new_figure()
     rows = []
-    for name, g in lines:
-        slope, ci, intercept, n = ar.fit_loglog(g[x_col], g[metric])
-        s = ar.summarize(g, [x_col], metric)
-        line = ax.errorbar(s[x_col], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
-                           label=f"{name}: slope {slope:.2f} ± {ci:.2f}" if np.isfinite(ci) else f"{name}: slope {slope:.2f}")
-        if np.isfinite(slope):
-            xs = np.logspace(np.log10(s[x_col].min()), np.log10(s[x_col].max()), 50)
-            ax.plot(xs, 10 ** (intercept + slope * np.log10(xs)), color=line[0].get_color(), alpha=0.6)
+    for name, slope, ci, n, s in ar.plot_loglog_lines(ax, lines, x_col, metric):
         rows.append({"strategy": name, "slope": slope, "ci95": ci, "points": n, f"{metric} at N max": s["mean"].iloc[-1]})
         print(f"hypotheses: {name}: log-log slope {slope:.3f} ± {ci:.3f}")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
     ax.set_xlabel("landmarks")
     ax.set_ylabel(metric.replace("_", " "))
     ax.set_title("Association hypotheses vs map size")

@@ -22,7 +22,7 @@ def make(df, out_dir, results_path=None):
     if joined.empty:
         return []
     joined["ate_ratio"] = joined["ate_rmse_m"] / joined["ate_rmse_m_smoother"]
-    groups = [c for c in ar.METHOD + ["particles"] if c in joined.columns]
+    groups = [c for c in ar.method_columns(fastslam) + ["particles"] if c in joined.columns]
     groups, joined = ar.drop_identical_map_backends(joined, groups, scenario + ["seed"])
     rows = []
     for key, g in joined.groupby(groups, sort=True):
