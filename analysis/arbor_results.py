@@ -222,6 +222,15 @@ def save_figure(fig, out_dir, name):
     return path
 
 
+def figure_section(fig, out_dir, figure, title, rows):
+    """Saves fig as `figure`, prints `rows` as a table, and returns the report section: the figure, then the
+    table."""
+    save_figure(fig, out_dir, figure)
+    frame = pd.DataFrame(rows)
+    print(frame.to_string(index=False))
+    return [Section(title, f"![{title.lower()}]({figure})\n\n{markdown_table(frame)}\n")]
+
+
 def read_study_runs(pattern, regex, fields):
     """The result.json files of a study script's runs (glob pattern), one row each: the named groups of
     regex, matched against the run's directory name (digits become ints), and the listed result fields.

@@ -31,10 +31,7 @@ def make(df, out_dir, results_path=None):
         ax.grid(True, alpha=0.3)
     axes[0][0].set_ylabel("score")
     axes[0][0].legend(fontsize=8)
-    ar.save_figure(fig, out_dir, FIGURE)
-    frame = ar.pd.DataFrame(rows)
-    print(frame.to_string(index=False))
-    return [ar.Section("Association vs clutter", f"![association vs clutter]({FIGURE})\n\n{ar.markdown_table(frame)}\n")]
+    return ar.figure_section(fig, out_dir, FIGURE, "Association vs clutter", rows)
 
 
 if __name__ == "__main__":

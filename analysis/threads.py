@@ -36,10 +36,7 @@ def make(df, out_dir, results_path=None):
     ax.set_ylabel(f"speed-up of {metric.replace('_', ' ')}")
     ax.set_title("Thread scaling")
     ax.legend(fontsize=8)
-    ar.save_figure(fig, out_dir, FIGURE)
-    frame = ar.pd.DataFrame(rows)
-    print(frame.to_string(index=False))
-    return [ar.Section("Thread scaling", f"![thread scaling]({FIGURE})\n\n{ar.markdown_table(frame)}\n")]
+    return ar.figure_section(fig, out_dir, FIGURE, "Thread scaling", rows)
 
 
 if __name__ == "__main__":
