@@ -72,14 +72,13 @@ void add_factors(const FactorGraph& graph, ProblemData& data, ceres::LossFunctio
   for (int i = 0; i < data.pose_count; ++i) problem.AddParameterBlock(data.pose(i), 3);
   for (int j = 0; j < data.landmark_count; ++j) problem.AddParameterBlock(data.landmark(j), 2);
   for (const BetweenFactor& f : graph.betweens)
-    problem.AddResidualBlock(internal::BetweenError::create(f), nullptr, data.pose(f.from), data.pose(f.to));
+    problem.AddResidualBlock(internal::cost_of(f), nullptr, data.pose(f.from), data.pose(f.to));
   for (const RangeBearingFactor& f : graph.range_bearings)
-    problem.AddResidualBlock(internal::RangeBearingError::create(f), loss, data.pose(f.pose),
-                             data.landmark(f.landmark));
+    problem.AddResidualBlock(internal::cost_of(f), loss, data.pose(f.pose), data.landmark(f.landmark));
   for (const PointFactor& f : graph.points)
-    problem.AddResidualBlock(internal::PointError::create(f), loss, data.pose(f.pose), data.landmark(f.landmark));
+    problem.AddResidualBlock(internal::cost_of(f), loss, data.pose(f.pose), data.landmark(f.landmark));
   for (const PosePriorFactor& f : graph.priors)
-    problem.AddResidualBlock(internal::PosePriorError::create(f), nullptr, data.pose(f.pose));
+    problem.AddResidualBlock(internal::cost_of(f), nullptr, data.pose(f.pose));
 }
 
 ceres::Solver::Options make_solver_options(const SmootherOptions& options) {
@@ -127,18 +126,18 @@ class WarmStart {
     for (; prior_ < graph_.priors.size() && graph_.priors[prior_].pose / chunk <= stage; ++prior_) {
       const PosePriorFactor& f = graph_.priors[prior_];
       ready_pose(f.pose);
-      problem_.AddResidualBlock(internal::PosePriorError::create(f), nullptr, data_.pose(f.pose));
+      problem_.AddResidualBlock(internal::cost_of(f), nullptr, data_.pose(f.pose));
     }
     for (; between_ < graph_.betweens.size(); ++between_) {
       const BetweenFactor& f = graph_.betweens[between_];
       if (std::max(f.from, f.to) / chunk > stage) break;
       ready_pose_via(f);
-      problem_.AddResidualBlock(internal::BetweenError::create(f), nullptr, data_.pose(f.from), data_.pose(f.to));
+      problem_.AddResidualBlock(internal::cost_of(f), nullptr, data_.pose(f.from), data_.pose(f.to));
     }
-    add_landmark_factors<internal::RangeBearingError>(
+    add_landmark_factors(
         graph_.range_bearings, range_bearing_, stage, chunk,
         [](const Pose2& x, const RangeBearingFactor& f) { return range_bearing_inverse(x, f.z); });
-    add_landmark_factors<internal::PointError>(
+    add_landmark_factors(
         graph_.points, point_, stage, chunk, [](const Pose2& x, const PointFactor& f) { return x.transform(f.p_robot); });
   }
 
@@ -159,7 +158,7 @@ class WarmStart {
  private:
   // The landmark factors of one kind (range-bearing or point) up to `stage`, from factors[next] on. A
   // landmark met for the first time starts where its first factor puts it: initial(pose, factor).
-  template <class Error, class Factor, class Initial>
+  template <class Factor, class Initial>
   void add_landmark_factors(const std::vector<Factor>& factors, std::size_t& next, int stage, int chunk,
                             const Initial& initial) {
     for (; next < factors.size(); ++next) {
@@ -170,7 +169,7 @@ class WarmStart {
         const double* x = data_.pose(f.pose);
         set_landmark(f.landmark, initial(Pose2{x[0], x[1], x[2]}, f));
       }
-      problem_.AddResidualBlock(Error::create(f), loss_, data_.pose(f.pose), data_.landmark(f.landmark));
+      problem_.AddResidualBlock(internal::cost_of(f), loss_, data_.pose(f.pose), data_.landmark(f.landmark));
     }
   }
 

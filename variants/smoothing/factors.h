@@ -37,13 +37,21 @@ Eigen::Matrix<double, N, N> square_root_information(const Eigen::Matrix<double, 
   return llt.matrixL().transpose();
 }
 
-// What every factor shares: the square root of its information and the whitened residual W e, with
-// W^T W = Sigma^-1, so that the squared residual is the Mahalanobis distance.
-template <int N>
-class WhitenedError {
+// What every factor shares: its measurement, the square root W of its information (W^T W = Sigma^-1, so the
+// squared residual is the Mahalanobis distance), the whitening W e, and create(). A factor writes only its
+// residual e, as operator()(parameter blocks..., residual) over Ceres' Jet types. N: residual size;
+// Blocks: the sizes of its parameter blocks.
+template <class Derived, int N, class Measured, int... Blocks>
+class WhitenedFactor {
+ public:
+  WhitenedFactor(const Measured& measured, const Eigen::Matrix<double, N, N>& covariance)
+      : measured_(measured), sqrt_information_(square_root_information<N>(covariance)) {}
+
+  static ceres::CostFunction* create(const Measured& measured, const Eigen::Matrix<double, N, N>& covariance) {
+    return new ceres::AutoDiffCostFunction<Derived, N, Blocks...>(new Derived(measured, covariance));
+  }
+
  protected:
-  explicit WhitenedError(const Eigen::Matrix<double, N, N>& covariance)
-      : sqrt_information_(square_root_information<N>(covariance)) {}
   template <typename T>
   bool whiten(const Eigen::Matrix<T, N, 1>& e, T* residual) const {
     Eigen::Map<Eigen::Matrix<T, N, 1>> r(residual);
@@ -51,48 +59,43 @@ class WhitenedError {
     return true;
   }
 
+  Measured measured_;
+
  private:
   Eigen::Matrix<double, N, N> sqrt_information_;
 };
 
-// BetweenFactor: parameters pose_from[3], pose_to[3]; residual 3.
-class BetweenError : public WhitenedError<3> {
+// BetweenFactor: parameters pose_from[3], pose_to[3]; residual 3; the measurement is the relative motion.
+class BetweenError : public WhitenedFactor<BetweenError, 3, Pose2, 3, 3> {
  public:
-  BetweenError(const Pose2& delta, const Mat3& covariance)
-      : WhitenedError(covariance), delta_(delta) {}
+  using WhitenedFactor::WhitenedFactor;
 
   template <typename T>
   bool operator()(const T* from, const T* to, T* residual) const {
     using std::cos;
     using std::sin;
+    const Pose2& delta = measured_;
     const T c = cos(from[2]), s = sin(from[2]);
     const T dx = to[0] - from[0], dy = to[1] - from[1];
     // from^-1 * to, minus delta's translation, then rotated into delta's frame.
-    const T tx = c * dx + s * dy - delta_.x, ty = -s * dx + c * dy - delta_.y;
-    const double cd = std::cos(delta_.theta), sd = std::sin(delta_.theta);
+    const T tx = c * dx + s * dy - delta.x, ty = -s * dx + c * dy - delta.y;
+    const double cd = std::cos(delta.theta), sd = std::sin(delta.theta);
     Eigen::Matrix<T, 3, 1> e;
-    e << cd * tx + sd * ty, -sd * tx + cd * ty, wrap_angle_t(to[2] - from[2] - T(delta_.theta));
+    e << cd * tx + sd * ty, -sd * tx + cd * ty, wrap_angle_t(to[2] - from[2] - T(delta.theta));
     return whiten(e, residual);
   }
-
-  static ceres::CostFunction* create(const BetweenFactor& f) {
-    return new ceres::AutoDiffCostFunction<BetweenError, 3, 3, 3>(new BetweenError(f.delta, f.covariance));
-  }
-
- private:
-  Pose2 delta_;
 };
 
 // RangeBearingFactor: parameters pose[3], landmark[2]; residual 2; bearing error wrapped.
-class RangeBearingError : public WhitenedError<2> {
+class RangeBearingError : public WhitenedFactor<RangeBearingError, 2, Vec2, 3, 2> {
  public:
-  RangeBearingError(const Vec2& z, const Mat2& covariance)
-      : WhitenedError(covariance), z_(z) {}
+  using WhitenedFactor::WhitenedFactor;
 
   template <typename T>
   bool operator()(const T* pose, const T* landmark, T* residual) const {
     using std::atan2;
     using std::sqrt;
+    const Vec2& z = measured_;
     const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
     const T q = dx * dx + dy * dy;
     Eigen::Matrix<T, 2, 1> e;
@@ -100,66 +103,51 @@ class RangeBearingError : public WhitenedError<2> {
       // At the sensor itself (a zero-range measurement starts its landmark there) the bearing and its
       // derivative (0/0) are undefined, and one NaN Jacobian failed the whole solve: the factor holds the
       // floored range alone there, as range_bearing_predict does for the filter.
-      e << sqrt(T(kMinSquaredRange)) - z_.x(), T(0.0);
+      e << sqrt(T(kMinSquaredRange)) - z.x(), T(0.0);
     } else {
-      e << sqrt(q) - z_.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z_.y());
+      e << sqrt(q) - z.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z.y());
     }
     return whiten(e, residual);
   }
-
-  static ceres::CostFunction* create(const RangeBearingFactor& f) {
-    return new ceres::AutoDiffCostFunction<RangeBearingError, 2, 3, 2>(new RangeBearingError(f.z, f.covariance));
-  }
-
- private:
-  Vec2 z_;
 };
 
 // PointFactor: parameters pose[3], landmark[2]; residual 2: R(th)^T (m - p) - p_robot.
-class PointError : public WhitenedError<2> {
+class PointError : public WhitenedFactor<PointError, 2, Vec2, 3, 2> {
  public:
-  PointError(const Vec2& p_robot, const Mat2& covariance)
-      : WhitenedError(covariance), p_robot_(p_robot) {}
+  using WhitenedFactor::WhitenedFactor;
 
   template <typename T>
   bool operator()(const T* pose, const T* landmark, T* residual) const {
     using std::cos;
     using std::sin;
+    const Vec2& p_robot = measured_;
     const T c = cos(pose[2]), s = sin(pose[2]);
     const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
     Eigen::Matrix<T, 2, 1> e;
-    e << c * dx + s * dy - p_robot_.x(), -s * dx + c * dy - p_robot_.y();
+    e << c * dx + s * dy - p_robot.x(), -s * dx + c * dy - p_robot.y();
     return whiten(e, residual);
   }
-
-  static ceres::CostFunction* create(const PointFactor& f) {
-    return new ceres::AutoDiffCostFunction<PointError, 2, 3, 2>(new PointError(f.p_robot, f.covariance));
-  }
-
- private:
-  Vec2 p_robot_;
 };
 
-// PosePriorFactor: parameters pose[3]; residual 3.
-class PosePriorError : public WhitenedError<3> {
+// PosePriorFactor: parameters pose[3]; residual 3; the measurement is the prior mean.
+class PosePriorError : public WhitenedFactor<PosePriorError, 3, Pose2, 3> {
  public:
-  PosePriorError(const Pose2& mean, const Mat3& covariance)
-      : WhitenedError(covariance), mean_(mean) {}
+  using WhitenedFactor::WhitenedFactor;
 
   template <typename T>
   bool operator()(const T* pose, T* residual) const {
+    const Pose2& mean = measured_;
     Eigen::Matrix<T, 3, 1> e;
-    e << pose[0] - mean_.x, pose[1] - mean_.y, wrap_angle_t(pose[2] - T(mean_.theta));
+    e << pose[0] - mean.x, pose[1] - mean.y, wrap_angle_t(pose[2] - T(mean.theta));
     return whiten(e, residual);
   }
-
-  static ceres::CostFunction* create(const PosePriorFactor& f) {
-    return new ceres::AutoDiffCostFunction<PosePriorError, 3, 3>(new PosePriorError(f.mean, f.covariance));
-  }
-
- private:
-  Pose2 mean_;
 };
+
+// The cost function of each factor of the graph.
+inline ceres::CostFunction* cost_of(const BetweenFactor& f) { return BetweenError::create(f.delta, f.covariance); }
+inline ceres::CostFunction* cost_of(const RangeBearingFactor& f) { return RangeBearingError::create(f.z, f.covariance); }
+inline ceres::CostFunction* cost_of(const PointFactor& f) { return PointError::create(f.p_robot, f.covariance); }
+inline ceres::CostFunction* cost_of(const PosePriorFactor& f) { return PosePriorError::create(f.mean, f.covariance); }
 
 }  // namespace arbor::internal
 
