@@ -35,9 +35,11 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
       ->capture_default_str();
   cmd.add_option("--chi2", config.options.association.gate_probability,
                   "Chi-square gate probability of the association tests")
+      ->check(open_probability())
       ->capture_default_str();
   cmd.add_option("--new-landmark-gate", config.options.association.new_landmark_probability,
                   "A measurement outside this chi-square gate of every landmark starts a new one")
+      ->check(open_probability())
       ->capture_default_str();
   cmd.add_option("--motion-sampling", choices.motion_sampling,
                   "per-scan: carry each particle's predicted mean and covariance through every control and draw once "

@@ -55,6 +55,8 @@ TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) 
       {run + "--seed -1", "--seed"},
       {run + "--prune nan", "--prune"},
       {run + "--chi2 inf", "--chi2"},
+      {run + "--chi2 2", "--chi2"},
+      {run + "--new-landmark-gate 0", "--new-landmark-gate"},
       {run + "--resample-threshold 1e999", "--resample-threshold"},
       {testing::arbor_binary() + " simulate --clutter nan --out " + dir + "/x.scn", "--clutter"},
       {testing::arbor_binary() + " relocalize --seed -3", "--seed"},

@@ -187,6 +187,9 @@ TEST(SweepSpec, ABadRunOptionValueNamesItsLineAndFieldWithTheRunCommandsMessage)
   EXPECT_EQ(e.field(), "grid.student-dof");
   EXPECT_EQ(e.line(), 19);
   EXPECT_NE(std::string(e.what()).find("0.01"), std::string::npos) << e.what();
+  // A probability outside (0, 1) is refused by the spec, not by a child run that fails later.
+  e = error_of(dir, std::string(kGoodSpec) + "chi2 = 2.0\n");
+  EXPECT_EQ(e.field(), "grid.chi2");
   text = std::string(kGoodSpec) + "likelihood = \"cauchy\"\n";
   e = error_of(dir, text);
   EXPECT_EQ(e.field(), "grid.likelihood");
