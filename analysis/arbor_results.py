@@ -115,12 +115,25 @@ def drop_identical_map_backends(df, by, keys):
     return [c for c in by if c != "map"], df.drop_duplicates(subset=rest)
 
 
+# How a label names each dimension that is not a method: "name = value unit", so that a label part can never
+# be clutter in one table and particles in another. Method columns (filter, map, assoc, run options' values
+# aside) are names already and stay bare: "fastslam2/jcbb, particles = 100, clutter = 2 /scan".
+DIMENSIONS = {"world_landmarks": ("landmarks", ""), "world_steps": ("scans", ""), "clutter": ("clutter", " /scan"),
+              "world_seed": ("world seed", "")}
+
+
 def label(row, columns):
-    parts = []
+    bare, named = [], []
     for c in columns:
         v = row[c]
-        parts.append(str(int(v)) if isinstance(v, float) and float(v).is_integer() else str(v))
-    return "/".join(parts) if parts else "all runs"
+        text = str(int(v)) if isinstance(v, float) and float(v).is_integer() else str(v)
+        if c in METHOD:
+            bare.append(text)
+        else:
+            name, unit = DIMENSIONS.get(c, (c, ""))
+            named.append(f"{name} = {text}{unit}")
+    parts = (["/".join(bare)] if bare else []) + named
+    return ", ".join(parts) if parts else "all runs"
 
 
 def t_quantile(dof, q=0.975):

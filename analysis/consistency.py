@@ -46,7 +46,8 @@ def make(df, out_dir, results_path=None):
     if not ar.has_data(df, "nees_in_band_fraction"):
         return []
     df = df[df["nees_in_band_fraction"].notna()]
-    keys = [c for c in ("filter", "assoc", "particles", "clutter", "dataset") if c in df.columns]
+    keys = [c for c in ("filter", "assoc") if c in df.columns] + ar.run_option_columns(df)
+    keys += [c for c in ("particles", "clutter", "dataset") if c in df.columns]
     _, df = ar.drop_identical_map_backends(df, keys + ["map"], ["seed", "scenario"])
     rows, curves = [], []
     for name, g in df.groupby(keys, dropna=False):

@@ -62,6 +62,29 @@ TEST_F(AnalysisScripts, FigureScriptsRunOnTheirOwn) {
   EXPECT_GT(std::filesystem::file_size(out / "run.png"), 1000u);
 }
 
+// A sweep that varies a run option writes it between threads and scenario; the analysis keeps its text
+// (not NaN), tells configurations apart by it, and every label part names its dimension.
+TEST_F(AnalysisScripts, RunOptionsSeparateConfigurationsAndLabelsNameTheirDimensions) {
+  ScratchDir out("options");
+  std::ofstream(out / "results.jsonl")
+      << R"({"key":"a","status":"ok","filter":"fastslam2","map":"tree","assoc":"nn","particles":10,"seed":1,)"
+      << R"("threads":1,"likelihood":"gaussian","scenario":"s","run_dir":"runs/a","clutter":2})" << "\n"
+      << R"({"key":"b","status":"ok","filter":"fastslam2","map":"tree","assoc":"nn","particles":10,"seed":1,)"
+      << R"("threads":1,"likelihood":"student-t","scenario":"s","run_dir":"runs/b","clutter":2})" << "\n";
+  const std::string script =
+      "import sys; sys.path.insert(0, '" + kSource + "/analysis'); import arbor_results as ar\n"
+      "df = ar.load_results('" + out.str() + "')\n"
+      "print(ar.run_option_columns(df), sorted(df['likelihood']))\n"
+      "for name, g in ar.lines_for(df.assign(x=[1, 2]), 'x', min_points=1): print(name)\n"
+      "print(ar.label(df.iloc[0], ['filter', 'assoc', 'clutter', 'particles']))\n";
+  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
+  const std::string log = read_text(out / "log.txt");
+  EXPECT_NE(log.find("['likelihood'] ['gaussian', 'student-t']"), std::string::npos) << log;
+  EXPECT_NE(log.find("\nlikelihood = gaussian\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("\nlikelihood = student-t\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("fastslam2/nn, clutter = 2 /scan, particles = 10"), std::string::npos) << log;
+}
+
 // The clutter study's table: known association is the reference of each world and clutter rate (its ratio
 // is 1), and the ratio of another strategy is the ratio of the mean aligned ATEs.
 TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
