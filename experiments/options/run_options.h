@@ -8,9 +8,13 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "experiments/run/fastslam_run.h"
+
+// Declared, not included: CLI11 is a large header, and the sweep spec reader (and its fuzz target) needs only
+// the two functions at the end, not the command line.
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace arbor::cli {
 

@@ -23,13 +23,13 @@ namespace {
 using Reference = std::map<LandmarkId, Landmark>;
 
 // Every back end in the registry, plus the trie with hashes that exercise other code paths (no id order,
-// collision nodes) and with 8-way and 4-way nodes (the fan-out is a template parameter).
+// collision nodes) and with 8-way nodes (the fan-out is a template parameter).
 template <class List>
 struct WithExtraHashes;
 template <class... Maps>
 struct WithExtraHashes<TypeList<Maps...>> {
   using type = ::testing::Types<Maps..., HamtMap<HamtMixHash>, HamtMap<HamtCollidingHash>,
-                                HamtMap<HamtIdentityHash, 3>, HamtMap<HamtMixHash, 2>>;
+                                HamtMap<HamtIdentityHash, 3>>;
 };
 using Backends = WithExtraHashes<MapBackends>::type;
 
