@@ -1,43 +1,5 @@
-// arbor: the command-line front end. Subcommands only; each lives in experiments/cli/<name>_command.cc.
-#include <cstdio>
-#include <exception>
+// arbor: the command-line front end (experiments/cli/command_line.cc; each subcommand in
+// experiments/cli/<name>_command.cc).
+#include "experiments/cli/command_line.h"
 
-#include <CLI/CLI.hpp>
-#include <fmt/core.h>
-
-#include "core/io/input_error.h"
-#include "experiments/cli/commands.h"
-#include "experiments/options/option_checks.h"
-
-int main(int argc, char** argv) {
-  CLI::App app{"Arbor: a benchmark and research framework for landmark-based SLAM (FastSLAM 1.0/2.0)."};
-  app.require_subcommand(1);
-  app.set_help_all_flag("--help-all", "Print help for every subcommand");
-  arbor::cli::CommandAction action;
-  arbor::cli::add_simulate_command(app, &action);
-  arbor::cli::add_run_command(app, &action);
-  arbor::cli::add_associate_command(app, &action);
-  arbor::cli::add_relocalize_command(app, &action);
-  arbor::cli::add_convert_command(app, &action);
-#ifdef ARBOR_HAVE_SMOOTHER
-  arbor::cli::add_smooth_command(app, &action);
-#endif
-  arbor::cli::add_sweep_command(app, &action);
-  arbor::cli::add_merge_command(app, &action);
-  arbor::cli::apply_common_option_checks(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;  // DESIGN.md §9: bad options exit with status 2
-  }
-  try {
-    return action ? action() : 0;
-  } catch (const arbor::InputError& e) {
-    fmt::print(stderr, "arbor: error: {}\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "arbor: failed: {}\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return arbor::cli::run_command_line(argc, argv); }
