@@ -10,12 +10,19 @@
 
 namespace arbor {
 
+struct WeightedPose {
+  Pose2 pose;
+  double weight = 0.0;
+};
+
 class Filter {
  public:
   virtual ~Filter() = default;
   virtual void step(const ScenarioStep& step) = 0;
   virtual const StepStats& last_step_stats() const = 0;
   virtual PoseEstimate estimate() const = 0;
+  // Every particle's pose (between scans, the mean it predicts) and normalised weight, in particle order.
+  virtual std::vector<WeightedPose> particles() const = 0;
   // The particle of highest weight: its trajectory (oldest first) and its map (ascending id).
   virtual std::vector<TimedPose> best_trajectory() const = 0;
   virtual std::vector<Landmark> best_map() const = 0;
@@ -41,6 +48,11 @@ class FilterImpl final : public Filter {
   void step(const ScenarioStep& step) override { engine_.step(step); }
   const StepStats& last_step_stats() const override { return engine_.last_step_stats(); }
   PoseEstimate estimate() const override { return engine_.estimate(); }
+  std::vector<WeightedPose> particles() const override {
+    std::vector<WeightedPose> out(engine_.particle_count());
+    for (int i = 0; i < engine_.particle_count(); ++i) out[i] = {engine_.particle(i).pose, engine_.weight(i)};
+    return out;
+  }
   std::vector<TimedPose> best_trajectory() const override {
     return engine_.particle(engine_.best_particle()).history.to_vector();
   }

@@ -103,16 +103,53 @@ void apply_run_choices(const RunChoices& choices, RunConfig& config) {
     throw InputError("", 0, "likelihood", "unknown likelihood " + choices.likelihood);
 }
 
+namespace {
+
+// Every run option bound to its own config, checked as the command line checks it.
+struct RunOptionParser {
+  CLI::App app;
+  RunConfig config;
+  RunChoices choices;
+  RunOptionParser() {
+    add_run_options(app, config, choices);
+    apply_common_option_checks(app);
+  }
+  // CLI11's message, or empty when every argument was accepted.
+  std::string parse(std::vector<std::string> arguments) {
+    // The two required options get placeholders where the caller leaves them out.
+    for (const char* name : {"--scenario", "--out"}) {
+      const std::string prefix = std::string(name) + "=";
+      if (std::none_of(arguments.begin(), arguments.end(), [&](const std::string& a) { return a.starts_with(prefix); }))
+        arguments.push_back(prefix + "-");
+    }
+    std::reverse(arguments.begin(), arguments.end());  // CLI11 takes a vector of arguments last first
+    try {
+      app.parse(arguments);
+    } catch (const CLI::ParseError& e) {
+      return e.what();
+    }
+    return {};
+  }
+};
+
+}  // namespace
+
+RunConfig run_config_from_arguments(const std::vector<std::string>& arguments) {
+  RunOptionParser parser;
+  if (std::string error = parser.parse(arguments); !error.empty()) throw InputError("", 0, "", error);
+  apply_run_choices(parser.choices, parser.config);
+  if (parser.config.out_dir == "-") parser.config.out_dir.clear();
+  if (parser.config.scenario_path == "-") parser.config.scenario_path.clear();
+  return parser.config;
+}
+
 const std::vector<std::string>& sweepable_run_options() {
   static const std::vector<std::string> names = [] {
-    CLI::App app;
-    RunConfig config;
-    RunChoices choices;
-    add_run_options(app, config, choices);
+    RunOptionParser parser;
     const std::vector<std::string> set_by_the_sweep{"scenario", "out",       "filter", "map",
                                                     "assoc",    "particles", "seed",   "threads"};
     std::vector<std::string> out;
-    for (const CLI::Option* o : app.get_options()) {
+    for (const CLI::Option* o : parser.app.get_options()) {
       const std::string name = o->get_single_name();
       if (o->get_lnames().empty() || name == "help") continue;
       if (std::find(set_by_the_sweep.begin(), set_by_the_sweep.end(), name) == set_by_the_sweep.end())
@@ -125,17 +162,7 @@ const std::vector<std::string>& sweepable_run_options() {
 }
 
 std::string run_option_error(const std::string& name, const std::string& value) {
-  CLI::App app;
-  RunConfig config;
-  RunChoices choices;
-  add_run_options(app, config, choices);
-  apply_common_option_checks(app);
-  try {
-    app.parse(std::vector<std::string>{"--" + name + "=" + value, "--out=x", "--scenario=x"});
-  } catch (const CLI::ParseError& e) {
-    return e.what();
-  }
-  return {};
+  return RunOptionParser().parse({"--" + name + "=" + value});
 }
 
 }  // namespace arbor::cli

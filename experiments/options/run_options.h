@@ -31,6 +31,11 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices);
 // Turns the named choices into config's enums; throws InputError naming the option.
 void apply_run_choices(const RunChoices& choices, RunConfig& config);
 
+// Parses `--name=value` arguments as `arbor run` parses its command line (the same names, defaults and
+// checks; --scenario and --out may be left out) and applies the choices. The Python API's arbor.run and
+// arbor.Filter take their keyword arguments this way. Throws InputError with CLI11's message.
+RunConfig run_config_from_arguments(const std::vector<std::string>& arguments);
+
 // The run options a sweep grid may vary: all but those the sweep sets itself, from its scenario and its own
 // grid dimensions (scenario, out, filter, map, assoc, particles, seed, threads). Names without "--".
 const std::vector<std::string>& sweepable_run_options();

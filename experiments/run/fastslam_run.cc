@@ -29,6 +29,16 @@ std::string associations_csv(const std::vector<StepDecisions>& decisions) {
   return out;
 }
 
+std::string steps_csv(const std::vector<StepRecord>& steps) {
+  std::string out = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees\n";
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const StepRecord& s = steps[k];
+    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{}\n", k, s.time_s, s.step_time_s, s.n_eff,
+                   s.resampled ? 1 : 0, s.landmarks, s.hypotheses, s.nees ? fmt::format("{}", *s.nees) : "");
+  }
+  return out;
+}
+
 }  // namespace
 
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
@@ -40,8 +50,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   RunOutput out;
   std::vector<double> step_times;
   step_times.reserve(scenario.steps.size());
-  std::vector<TimedPose> mean_trajectory{{scenario.start_time_s, filter->estimate().mean}};
-  std::string steps_csv = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees\n";
+  out.steps.reserve(scenario.steps.size());
+  std::vector<TimedPose>& mean_trajectory = out.mean_trajectory;
+  mean_trajectory.push_back({scenario.start_time_s, filter->estimate().mean});
   double n_eff_sum = 0.0;
   std::int64_t resamples = 0, hypotheses = 0, tests = 0, budget_exhausted = 0;
   Progress progress(fmt::format("run {}/{}/{}", to_string(config.options.version), config.map, config.assoc),
@@ -59,7 +70,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     hypotheses += stats.hypotheses;
     tests += stats.tests;
     budget_exhausted += stats.budget_exhausted;
-    std::string nees_text;
+    StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats.n_eff, stats.resampled,
+                                                           stats.best_landmarks, stats.hypotheses, std::nullopt});
     if (step.has_scan || step.truth_pose) {
       const PoseEstimate estimate = filter->estimate();
       mean_trajectory.push_back({step.time_s, estimate.mean});
@@ -67,20 +79,19 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
         const double nees = pose_nees(estimate.mean, estimate.covariance, *step.truth_pose);
         // At an exactly known pose (the start, with no initial uncertainty) the NEES is 0/0, not a figure.
         if (step.has_scan && estimate.covariance.trace() > 1e-9) out.nees.push_back(nees);
-        nees_text = fmt::format("{}", nees);
+        record.nees = nees;
       }
     }
-    fmt::format_to(std::back_inserter(steps_csv), "{},{},{:.9f},{},{},{},{},{}\n", k, step.time_s, dt, stats.n_eff,
-                   stats.resampled ? 1 : 0, stats.best_landmarks, stats.hypotheses, nees_text);
     progress.update(static_cast<std::int64_t>(k + 1), fmt::format("{} landmarks", stats.best_landmarks));
+    if (config.after_step) config.after_step();
   }
   progress.finish();
 
-  const std::vector<TimedPose> best = filter->best_trajectory();
+  const std::vector<TimedPose>& best = out.best_trajectory = filter->best_trajectory();
   // The filter's map is its confirmed landmarks; provisional ones are counted apart.
-  std::vector<Landmark> map = filter->best_map();
+  std::vector<Landmark>& map = out.map = filter->best_map();
   const std::size_t provisional_landmarks = std::erase_if(map, [](const Landmark& lm) { return !lm.confirmed; });
-  const std::vector<StepDecisions> decisions = filter->best_decisions();
+  const std::vector<StepDecisions>& decisions = out.decisions = filter->best_decisions();
   const AssociationCounts counts = score_decisions(decisions, scenario);
   const MapMemoryStats memory = filter->memory_stats();
 
@@ -146,18 +157,21 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   r["peak_rss_bytes"] = peak_rss_bytes();
 
-  if (!config.out_dir.empty()) {
-    std::filesystem::create_directories(config.out_dir);
-    const std::string dir = config.out_dir + "/";
-    write_tum(dir + "trajectory.tum", best);
-    write_tum(dir + "trajectory_mean.tum", mean_trajectory);
-    write_map_csv(dir + "map.csv", map);
-    write_file_atomically(dir + "steps.csv", steps_csv);
-    write_file_atomically(dir + "associations.csv", associations_csv(decisions));
-    // result.json last: its presence means the run finished and every other file is complete.
-    write_file_atomically(dir + "result.json", r.dump(2) + "\n");
-  }
+  if (!config.out_dir.empty()) write_run_files(out, config.out_dir);
   return out;
+}
+
+void write_run_files(const RunOutput& output, const std::string& out_dir) {
+  forget_finished_run(out_dir);
+  std::filesystem::create_directories(out_dir);
+  const std::string dir = out_dir + "/";
+  write_tum(dir + "trajectory.tum", output.best_trajectory);
+  write_tum(dir + "trajectory_mean.tum", output.mean_trajectory);
+  write_map_csv(dir + "map.csv", output.map);
+  write_file_atomically(dir + "steps.csv", steps_csv(output.steps));
+  write_file_atomically(dir + "associations.csv", associations_csv(output.decisions));
+  // result.json last: its presence means the run finished and every other file is complete.
+  write_file_atomically(dir + "result.json", output.result.dump(2) + "\n");
 }
 
 }  // namespace arbor

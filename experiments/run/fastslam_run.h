@@ -4,12 +4,18 @@
 #ifndef ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 #define ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 
+#include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/engine/fastslam_options.h"
+#include "core/types/landmark.h"
 #include "core/types/scenario.h"
+#include "core/types/step_decisions.h"
+#include "core/types/timed_pose.h"
 
 namespace arbor {
 
@@ -20,16 +26,38 @@ struct RunConfig {
   FastSlamOptions options;
   std::string out_dir;        // empty: compute the metrics but write no files
   bool progress = false;      // a progress line on stderr
+  // Called after every step; it may throw to end the run there (the Python API checks for Ctrl-C here).
+  std::function<void()> after_step;
 };
 
+// One row of steps.csv.
+struct StepRecord {
+  double time_s = 0.0;
+  double step_time_s = 0.0;
+  double n_eff = 0.0;
+  bool resampled = false;
+  std::size_t landmarks = 0;       // in the best particle's map, provisional ones included
+  std::int64_t hypotheses = 0;
+  std::optional<double> nees;      // at steps with a truth pose
+};
+
+// Everything a run leaves: write_run_files turns it into the files of DESIGN.md §9.
 struct RunOutput {
-  nlohmann::json result;      // what result.json holds
-  std::vector<double> nees;   // per step with a truth pose
+  nlohmann::json result;                 // what result.json holds
+  std::vector<double> nees;              // per scan with a truth pose (and some pose uncertainty)
+  std::vector<TimedPose> best_trajectory;
+  std::vector<TimedPose> mean_trajectory;  // the weighted mean, at the start and at every scan or truth pose
+  std::vector<Landmark> map;             // the best particle's confirmed landmarks, ascending id
+  std::vector<StepDecisions> decisions;  // the best particle's
+  std::vector<StepRecord> steps;         // one per scenario step
 };
 
-// Runs the filter over every step of the scenario and computes the metrics. Throws InputError for invalid
-// names or options.
+// Runs the filter over every step of the scenario and computes the metrics; writes the result files when
+// config.out_dir is set. Throws InputError for invalid names or options.
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config);
+
+// Writes DIR/trajectory.tum, trajectory_mean.tum, map.csv, steps.csv, associations.csv, and result.json last.
+void write_run_files(const RunOutput& output, const std::string& dir);
 
 }  // namespace arbor
 

@@ -39,7 +39,7 @@ std::vector<std::string> result_columns(const std::vector<std::string>& metrics,
   std::vector<std::string> columns{"key", "status", "error"};
   columns.insert(columns.end(), param_columns().begin(), param_columns().end());
   // The grid's further run options, after the parameters (before scenario and run_dir).
-  columns.insert(columns.end() - 2, run_options.begin(), run_options.end());
+  columns.insert(std::find(columns.begin(), columns.end(), "scenario"), run_options.begin(), run_options.end());
   for (const auto& m : metrics)
     if (std::find(columns.begin(), columns.end(), m) == columns.end()) columns.push_back(m);
   for (const char* c : {"commit", "host", "compiler", "build", "process_wall_s", "exit_code", "finished_at"})
