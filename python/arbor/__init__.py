@@ -1,0 +1,246 @@
+"""Arbor from Python: the same engine, options and files as the `arbor` command line, on numpy arrays.
+
+    import arbor
+    scenario = arbor.simulate(world="clustered", landmarks=250, steps=300, clutter=2, seed=1)
+    result = arbor.run(scenario, filter="fastslam2", map="trie", assoc="jcbb", particles=100, seed=1)
+    print(result.ate_rmse_m, result.assoc_f1)      # every field of result.json is an attribute
+    result.trajectory                              # N x 4 array: t, x, y, theta (the best particle)
+    result.to_dir("out/run")                       # the files `arbor run --out out/run` writes
+
+Keyword options are the command line's, with "_" for "-" (`known_gate=0.999` is `--known-gate=0.999`); they
+are parsed by the same code, so names, defaults and checks are the CLI's and a bad one raises
+arbor.InputError with the CLI's message. The long calls release the GIL and run on the engine's TBB threads;
+Ctrl-C ends them with KeyboardInterrupt. `smooth`, `associate`, `sweep` and `convert` run the `arbor` program
+of the same build (`arbor.executable()`) and read back its files.
+"""
+
+import csv
+import json
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+
+from ._arbor import InputError, Scenario, association_strategies, map_backends
+from . import _arbor
+
+__all__ = ["InputError", "Scenario", "Result", "Filter", "simulate", "run", "smooth", "associate", "sweep",
+           "convert", "cli", "executable", "map_backends", "association_strategies", "filters"]
+
+
+def filters():
+    """The filters, as --filter names them."""
+    return ["fastslam1", "fastslam2"]
+
+
+def _arguments(options):
+    """Keyword options as command-line arguments: x_y=v -> --x-y=v; True -> --x-y; False and None -> left out;
+    a list or tuple -> --x-y v1 v2 ..."""
+    out = []
+    for key, value in options.items():
+        name = "--" + key.replace("_", "-")
+        if value is None or value is False:
+            continue
+        if value is True:
+            out.append(name)
+        elif isinstance(value, (list, tuple, np.ndarray)):
+            out.append(name)
+            out.extend(repr(float(v)) if isinstance(v, float) else str(v) for v in value)
+        else:
+            out.append(f"{name}={repr(value) if isinstance(value, float) else value}")
+    return out
+
+
+def simulate(**options):
+    """A simulated scenario, as `arbor simulate` writes it (world=, landmarks=, steps=, clutter=, seed=, ...)."""
+    return _arbor._simulate(_arguments(options))
+
+
+def _from_arrays(times, controls, measurements=None, *, like=None, scans=None, truth_poses=None,
+                 truth_landmarks=None, metadata=None):
+    """A scenario from your own data.
+
+    times (T), controls (T x 3, in the motion model of `like`); measurements: a dict of equal-length arrays
+    'step' (the index into times), 'range' [m], 'bearing' [rad] and optionally 'truth_id'; scans (T bool):
+    steps that end with a scan, needed only for scans without measurements; truth_poses (T x 3, NaN rows where
+    unknown); truth_landmarks (L x 3: id, x, y). The motion and sensor models, the initial pose and the start
+    time come from `like` (default: a simulated scenario's odometry and sensor models at the origin).
+    Values outside the limits of docs/scenario_format.md raise InputError naming the array and element.
+    """
+    if like is None:
+        like = _default_header()
+    return Scenario._from_arrays(like, np.asarray(times, dtype=float), np.asarray(controls, dtype=float), scans,
+                                 measurements, truth_poses, truth_landmarks, metadata or {})
+
+
+Scenario.from_arrays = staticmethod(_from_arrays)
+
+_header = None
+
+
+def _default_header():
+    global _header
+    if _header is None:
+        _header = simulate(steps=1, landmarks=1)
+    return _header
+
+
+class Result:
+    """One run: `metrics` (result.json as a dict; its fields are also attributes), `trajectory` and
+    `trajectory_mean` (N x 4: t, x, y, theta), `map` (dict: id, mean K x 2, covariance K x 2 x 2, log_odds,
+    confirmed), `steps` (dict of per-step arrays: time_s, step_time_s, n_eff, resampled, landmarks,
+    hypotheses, nees). Arrays are copied once out of the engine."""
+
+    def __init__(self, output):
+        self._output = output
+        self.metrics = json.loads(output.result_json)
+        self.trajectory = output.trajectory
+        self.trajectory_mean = output.trajectory_mean
+        self.map = output.map
+        self.steps = output.steps
+
+    def __getattr__(self, name):
+        metrics = self.__dict__.get("metrics", {})
+        if name in metrics:
+            return metrics[name]
+        raise AttributeError(f"Result has no field {name!r}; result.json has: {', '.join(sorted(metrics))}")
+
+    def to_dir(self, path):
+        """Writes the files `arbor run --out PATH` writes (result.json last)."""
+        self._output.to_dir(os.fspath(path))
+
+    def __repr__(self):
+        m = self.metrics
+        c = m.get("config", {})
+        return (f"<arbor.Result {c.get('filter')}/{c.get('map')}/{c.get('assoc')} particles={c.get('particles')} "
+                f"seed={c.get('seed')}: ATE {m.get('ate_rmse_m')} m, F1 {m.get('assoc_f1')}>")
+
+
+def run(scenario, **options):
+    """Runs FastSLAM over a Scenario (or a scenario file's path) with `arbor run`'s options (filter=, map=,
+    assoc=, particles=, seed=, threads=, likelihood=, ...); returns a Result. With out=DIR it also writes the
+    run's files there, as `arbor run --out DIR` does."""
+    if not isinstance(scenario, Scenario):
+        options.setdefault("scenario", os.fspath(scenario))
+        scenario = Scenario.load(os.fspath(scenario))
+    return Result(_arbor._run(scenario, _arguments(options)))
+
+
+class Filter:
+    """The engine one step at a time, for your own loop or data source:
+
+        f = arbor.Filter(scenario, filter="fastslam2", map="tree", assoc="nn", particles=50, seed=3)
+        f.step(time, control, ranges, bearings)     # one control, then (if ranges) a scan
+        poses, weights = f.particles()
+
+    `scenario` supplies the motion and sensor models and the initial pose; its steps are not used."""
+
+    def __init__(self, scenario, **options):
+        self._filter = _arbor._Filter(scenario, _arguments(options))
+
+    def step(self, time, control, ranges=(), bearings=(), *, scan=None, truth_pose=None):
+        """Moves every particle through `control` to `time`, then, when there are measurements (or scan=True:
+        a scan that saw nothing), associates and updates."""
+        ranges = np.asarray(ranges, dtype=float)
+        self._filter.step(float(time), np.asarray(control, dtype=float), ranges,
+                          np.asarray(bearings, dtype=float), bool(scan if scan is not None else ranges.size > 0),
+                          truth_pose)
+
+    def particles(self):
+        """(poses M x 3, weights M), in particle order."""
+        return self._filter.particles()
+
+    def estimate(self):
+        """(mean 3, covariance 3 x 3) of the particles' weighted pose."""
+        return self._filter.estimate()
+
+    def best_map(self):
+        """The best particle's landmarks, provisional ones included (see `confirmed`)."""
+        return self._filter.best_map()
+
+    def best_trajectory(self):
+        return self._filter.best_trajectory()
+
+    def last_step(self):
+        """What the last step did: n_eff, resampled, hypotheses, budget_exhausted, landmarks, relocalized."""
+        return self._filter.last_step()
+
+
+# ---- The rest of the command line, through the program of this build ---------------------------------------
+
+def executable():
+    """The `arbor` program built beside this module."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    path = os.environ.get("ARBOR_EXECUTABLE") or os.path.join(here, "..", "..", "bin", "arbor")
+    return os.path.normpath(path)
+
+
+def cli(*args, check=True):
+    """Runs `arbor ARGS...`; returns its CompletedProcess (stdout and stderr as text). A failure raises
+    InputError (exit status 2: bad input or options) or RuntimeError (status 1) with the program's message."""
+    proc = subprocess.run([executable(), *map(str, args)], capture_output=True, text=True)
+    if check and proc.returncode != 0:
+        message = proc.stderr.strip().removeprefix("arbor: error: ").removeprefix("arbor: failed: ")
+        raise (InputError if proc.returncode == 2 else RuntimeError)(message)
+    return proc
+
+
+def _scenario_path(scenario, tmp):
+    if isinstance(scenario, Scenario):
+        path = os.path.join(tmp, "scenario.scn")
+        scenario.save(path)
+        return path
+    return os.fspath(scenario)
+
+
+def _read_tum(path):
+    """A TUM trajectory (t x y z qx qy qz qw) as N x 4: t, x, y and the planar heading 2 atan2(qz, qw)."""
+    rows = np.loadtxt(path, ndmin=2)
+    if rows.size == 0:
+        return np.zeros((0, 4))
+    return np.column_stack([rows[:, 0], rows[:, 1], rows[:, 2], 2.0 * np.arctan2(rows[:, 6], rows[:, 7])])
+
+
+def _read_map(path):
+    with open(path, newline="", encoding="utf-8") as f:
+        return {k: np.asarray(v) for k, v in _columns(csv.DictReader(f)).items()}
+
+
+def _columns(reader):
+    out = {}
+    for row in reader:
+        for k, v in row.items():
+            out.setdefault(k, []).append(float(v) if v not in ("", None) else np.nan)
+    return out
+
+
+def smooth(scenario, associations="known", out=None, **options):
+    """The Ceres full-SLAM smoother (`arbor smooth`): associations "known", a Result's directory, or a run
+    directory. Returns (result.json as a dict, trajectory N x 4, map dict of columns)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.fspath(out) if out else os.path.join(tmp, "smooth")
+        cli("smooth", "--scenario", _scenario_path(scenario, tmp), "--associations", os.fspath(associations),
+            "--out", out, *_arguments(options))
+        with open(os.path.join(out, "result.json"), encoding="utf-8") as f:
+            result = json.load(f)
+        return result, _read_tum(os.path.join(out, "trajectory.tum")), _read_map(os.path.join(out, "map.csv"))
+
+
+def associate(problem, assoc="jcbb", **options):
+    """Solves one association problem file (`arbor associate --problem FILE`); returns the command's output."""
+    return cli("associate", "--problem", os.fspath(problem), "--assoc", assoc, *_arguments(options)).stdout
+
+
+def convert(source, out, **options):
+    """`arbor convert --from SOURCE --out OUT ...`; returns the Scenario it wrote."""
+    cli("convert", "--from", source, "--out", os.fspath(out), *_arguments(options))
+    return Scenario.load(os.fspath(out))
+
+
+def sweep(spec, out, jobs=1, **options):
+    """Runs a sweep spec (`arbor sweep SPEC --out OUT --jobs J`, resumable); returns results.csv as a list of
+    dicts (analysis/arbor_results.py reads it into pandas)."""
+    cli("sweep", os.fspath(spec), "--out", os.fspath(out), "--jobs", jobs, *_arguments(options))
+    with open(os.path.join(os.fspath(out), "results.csv"), newline="", encoding="utf-8") as f:
+        return list(csv.DictReader(f))

@@ -1,0 +1,162 @@
+"""The Python API (python/arbor): the same engine, options, files and errors as the command line."""
+import os
+import subprocess
+import threading
+import time
+import _thread
+
+import numpy as np
+import pytest
+
+import arbor
+
+RUN = dict(filter="fastslam2", map="trie", assoc="jcbb", particles=20, seed=3)
+
+
+@pytest.fixture(scope="module")
+def scenario():
+    return arbor.simulate(world="clustered", landmarks=60, steps=60, clutter=1, seed=7)
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def without_step_time(path):
+    """steps.csv without its step_time_s column (wall-clock time differs from run to run)."""
+    return [line.split(",")[:2] + line.split(",")[3:] for line in read(path).decode().splitlines()]
+
+
+def test_variant_names_are_the_command_lines(scenario):
+    help_text = arbor.cli("run", "--help").stdout
+    assert arbor.map_backends() == ["naive", "tree", "trie"]
+    assert "Map back end: " + ", ".join(arbor.map_backends()) in help_text
+    assert "Data association: " + ", ".join(arbor.association_strategies()) in help_text
+
+
+def test_simulate_writes_the_same_scenario_as_the_cli(scenario, tmp_path):
+    arbor.cli("simulate", "--world", "clustered", "--landmarks", 60, "--steps", 60, "--clutter", 1, "--seed", 7,
+              "--out", tmp_path / "cli.scn")
+    scenario.save(tmp_path / "py.scn")
+    assert read(tmp_path / "py.scn") == read(tmp_path / "cli.scn")
+
+
+def test_run_writes_the_same_bytes_as_arbor_run(scenario, tmp_path):
+    scenario.save(tmp_path / "s.scn")
+    arbor.cli("run", "--scenario", tmp_path / "s.scn", "--out", tmp_path / "cli", "--quiet",
+              *arbor._arguments(RUN))
+    result = arbor.run(scenario, **RUN)
+    result.to_dir(tmp_path / "py")
+    for name in ["trajectory.tum", "trajectory_mean.tum", "map.csv", "associations.csv"]:
+        assert read(tmp_path / "py" / name) == read(tmp_path / "cli" / name), name
+    assert without_step_time(tmp_path / "py" / "steps.csv") == without_step_time(tmp_path / "cli" / "steps.csv")
+    assert result.landmarks == len(result.map["id"]) > 0
+    assert result.trajectory.shape == (len(scenario) + 1, 4)
+    assert len(result.steps["n_eff"]) == len(scenario)
+
+
+def test_results_do_not_depend_on_the_thread_count(scenario):
+    one, two = arbor.run(scenario, threads=1, **RUN), arbor.run(scenario, threads=2, **RUN)
+    assert np.array_equal(one.trajectory, two.trajectory)
+    assert np.array_equal(one.map["covariance"], two.map["covariance"])
+
+
+def test_the_step_interface_reproduces_a_run(scenario):
+    result = arbor.run(scenario, **RUN)
+    f = arbor.Filter(scenario, **RUN)
+    z = scenario.measurements
+    for k, (t, u, scan) in enumerate(zip(scenario.times, scenario.controls, scenario.scans)):
+        mine = z["step"] == k
+        f.step(t, u, z["range"][mine], z["bearing"][mine], scan=scan)
+    assert np.array_equal(f.best_trajectory(), result.trajectory)
+    confirmed = f.best_map()["confirmed"]
+    assert np.array_equal(f.best_map()["mean"][confirmed], result.map["mean"])
+    poses, weights = f.particles()
+    assert poses.shape == (RUN["particles"], 3) and weights.sum() == pytest.approx(1.0)
+    assert f.last_step()["landmarks"] == len(confirmed)
+
+
+def test_a_scenario_from_arrays_runs_like_the_original(scenario):
+    copy = arbor.Scenario.from_arrays(scenario.times, scenario.controls, scenario.measurements, like=scenario,
+                                      scans=scenario.scans, truth_poses=scenario.truth_poses,
+                                      truth_landmarks=scenario.truth_landmarks)
+    a, b = arbor.run(scenario, **RUN), arbor.run(copy, **RUN)
+    assert np.array_equal(a.trajectory, b.trajectory)
+    assert a.ate_rmse_m == b.ate_rmse_m and a.assoc_f1 == b.assoc_f1
+
+
+def test_bad_input_raises_input_error_naming_the_field(scenario, tmp_path):
+    with pytest.raises(arbor.InputError, match="particles"):
+        arbor.run(scenario, particles=0)
+    with pytest.raises(arbor.InputError, match="moon"):
+        arbor.simulate(world="moon")
+    with pytest.raises(arbor.InputError, match="no-such-option"):
+        arbor.run(scenario, no_such_option=1)
+    z = dict(scenario.measurements)
+    z["range"] = z["range"].copy()
+    z["range"][5] = -1.0
+    with pytest.raises(arbor.InputError, match=r"measurements\['range'\]\[5\]"):
+        arbor.Scenario.from_arrays(scenario.times, scenario.controls, z, like=scenario)
+    bad = tmp_path / "bad.scn"
+    bad.write_text(read_text_with_a_bad_range(scenario, tmp_path))
+    with pytest.raises(arbor.InputError) as error:
+        arbor.Scenario.load(bad)
+    assert error.value.file == str(bad) and error.value.line > 0 and error.value.field == "range"
+
+
+def read_text_with_a_bad_range(scenario, tmp_path):
+    scenario.save(tmp_path / "good.scn")
+    lines = (tmp_path / "good.scn").read_text().splitlines(keepends=True)
+    i = next(i for i, line in enumerate(lines) if line.startswith("z "))
+    lines[i] = "z -3 0.1 - 4\n"
+    return "".join(lines)
+
+
+@pytest.fixture(scope="module")
+def long_scenario():
+    """A run of it takes minutes (4000 scans, 100 particles, JCBB in clutter)."""
+    return arbor.simulate(world="clustered", landmarks=400, steps=4000, clutter=2, seed=1)
+
+
+LONG_RUN = dict(filter="fastslam2", map="tree", assoc="jcbb", particles=100, seed=1)
+
+
+def test_long_calls_release_the_gil():
+    about_a_second = arbor.simulate(world="clustered", landmarks=400, steps=300, clutter=2, seed=1)
+    ticks = []
+    worker = threading.Thread(target=lambda: arbor.run(about_a_second, **LONG_RUN, threads=1))
+    worker.start()
+    time.sleep(0.1)
+    while worker.is_alive() and len(ticks) < 100:
+        ticks.append(1)
+        time.sleep(0.001)
+    # Holding the GIL through the run would let this loop tick at most once before the run ends.
+    assert len(ticks) == 100
+    worker.join()
+
+
+def test_ctrl_c_interrupts_a_long_run(long_scenario, tmp_path):
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        arbor.run(long_scenario, **LONG_RUN, out=tmp_path / "run")
+    timer.cancel()
+    # Interrupted inside the run: a run that finished and was interrupted afterwards would have written it.
+    assert not (tmp_path / "run" / "result.json").exists()
+
+
+def test_smooth_and_sweep_run_the_program_of_the_same_build(scenario, tmp_path):
+    result, trajectory, landmarks = arbor.smooth(scenario)
+    assert trajectory.shape[1] == 4 and len(landmarks["id"]) > 0 and result["ate_rmse_m"] < 1.0
+    spec = tmp_path / "tiny.toml"
+    spec.write_text('[sweep]\nname = "tiny"\n[scenarios]\nworld = "uniform"\nlandmarks = 30\nsteps = 20\n'
+                    '[grid]\nfilter = "fastslam2"\nmap = ["naive", "trie"]\nassoc = "nn"\nparticles = 5\n'
+                    'seed = [1, 2]\nthreads = 1\n')
+    rows = arbor.sweep(spec, out=tmp_path / "sweep", jobs=2)
+    assert len(rows) == 4 and all(r["status"] == "ok" for r in rows)
+    # A run of the sweep is the run the API makes with the same options.
+    row = next(r for r in rows if r["map"] == "trie" and r["seed"] == "2")
+    mine = arbor.run(tmp_path / "sweep" / row["scenario"], filter="fastslam2", map="trie", assoc="nn",
+                     particles=5, seed=2)
+    assert float(row["ate_rmse_m"]) == pytest.approx(mine.ate_rmse_m, rel=1e-12)
