@@ -93,7 +93,7 @@ void BM_Map_VisitNear(benchmark::State& state) {
   std::uniform_real_distribution<double> u(-side / 2 + 15, side / 2 - 15);
   std::vector<Box2> boxes(kPrecomputed);
   for (Box2& b : boxes) {
-    const Vec2 c(u(rng), u(rng));
+    const Vec2 c = draw_vec2([&] { return u(rng); });
     b = Box2{c - Vec2(15, 15), c + Vec2(15, 15)};
   }
   std::size_t i = 0;

@@ -40,7 +40,7 @@ inline std::vector<Landmark> make_landmark_field(std::int64_t n, std::uint64_t s
   std::uniform_real_distribution<double> u(-side / 2, side / 2);
   std::vector<Landmark> field(n);
   for (Landmark& lm : field) {
-    lm.mean = Vec2(u(rng), u(rng));
+    lm.mean = draw_vec2([&] { return u(rng); });
     lm.cov = Mat2::Identity() * 0.25;
     lm.log_odds = 1.0f;
     lm.confirmed = true;

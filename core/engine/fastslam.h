@@ -257,7 +257,7 @@ class FastSlam {
   // Draws from N(mean, cov) with a symmetric square root, robust to a semi-definite covariance.
   static Vec3 sample_gaussian(const Vec3& mean, const Mat3& cov, RandomStream& rng) {
     Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (cov + cov.transpose()));
-    const Vec3 n(rng.normal(), rng.normal(), rng.normal());
+    const Vec3 n = draw_vec3([&] { return rng.normal(); });
     const Vec3 scaled = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().cwiseProduct(n);
     return mean + eig.eigenvectors() * scaled;
   }

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "core/math/angles.h"
+#include "core/math/eigen_types.h"
 
 namespace arbor {
 
@@ -85,6 +86,25 @@ class RandomStream {
   bool has_spare_ = false;
   double spare_ = 0.0;
 };
+
+// The draws behind one vector, in a fixed order. The arguments of one call are evaluated in an unspecified
+// order (gcc: the last first; clang: the first first), so Vec3(rng.normal(), rng.normal(), rng.normal())
+// gave different numbers under the two compilers, and a seed named a different world or run. These draw the
+// last component first, the order in which every figure Arbor has published so far was made (gcc's), so
+// those stay reproducible under either compiler.
+template <class Draw>
+Vec2 draw_vec2(Draw&& draw) {
+  const double y = draw();
+  const double x = draw();
+  return {x, y};
+}
+template <class Draw>
+Vec3 draw_vec3(Draw&& draw) {
+  const double z = draw();
+  const double y = draw();
+  const double x = draw();
+  return {x, y, z};
+}
 
 }  // namespace arbor
 

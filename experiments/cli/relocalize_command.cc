@@ -12,6 +12,7 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include "core/engine/rng.h"
 #include "core/io/input_error.h"
 #include "core/metrics/run_statistics.h"
 #include "core/models/range_bearing_model.h"
@@ -53,7 +54,7 @@ KnownMap make_known_map(const World& world, const SensorModel& sensor, const Lan
   const int n = static_cast<int>(world.landmarks.size());
   map.mean.resize(n);
   map.locality.resize(n);
-  for (int j = 0; j < n; ++j) map.mean[j] = world.landmarks[j].position + Vec2(normal(rng), normal(rng));
+  for (int j = 0; j < n; ++j) map.mean[j] = world.landmarks[j].position + draw_vec2([&] { return normal(rng); });
   std::vector<std::pair<double, int>> near;
   for (int j = 0; j < n; ++j) {
     const Vec2& p = world.landmarks[j].position;
@@ -141,7 +142,7 @@ int run_relocalize(const RelocalizeArgs& a) {
     std::vector<LandmarkId> truth_ids;
     for (const auto& [r, j] : visible) {
       Vec2 z = range_bearing_predict(truth, world.landmarks[j].position);
-      z += Vec2(sensor.sigma_range_m * normal(rng), sensor.sigma_bearing_rad * normal(rng));
+      z += Vec2(sensor.sigma_range_m, sensor.sigma_bearing_rad).cwiseProduct(draw_vec2([&] { return normal(rng); }));
       measured.measurements.push_back({Vec2(std::max(z.x(), 0.0), wrap_angle(z.y()))});
       truth_ids.push_back(j);
     }

@@ -108,7 +108,7 @@ Scenario simulate(const SimulationOptions& o) {
         // that the filter's model (true = apply(reading) + noise of covariance Q_d) holds.
         const Mat3 Q = odometry_body_noise(odometry_between(truth, next), dt, o.odometry).at(truth.theta);
         const Eigen::LLT<Mat3> llt(Q + 1e-18 * Mat3::Identity());
-        const Vec3 e = llt.matrixL() * Vec3(odometer.normal(), odometer.normal(), odometer.normal());
+        const Vec3 e = llt.matrixL() * draw_vec3([&] { return odometer.normal(); });
         ScenarioStep step;
         step.time_s = (k - 1) * o.dt_s + (c + 1) * dt;
         step.control = odometry_between(truth, Pose2::from_vector(next.vector() + e));

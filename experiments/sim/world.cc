@@ -28,13 +28,13 @@ World make_world(const WorldOptions& o) {
   std::vector<Vec2> centres;
   if (o.kind == WorldKind::kClustered) {
     const int clusters = std::max(1, o.landmarks / o.landmarks_per_cluster);
-    for (int c = 0; c < clusters; ++c) centres.emplace_back(rng.uniform() * w.side_m, rng.uniform() * w.side_m);
+    for (int c = 0; c < clusters; ++c) centres.push_back(draw_vec2([&] { return rng.uniform(); }) * w.side_m);
   }
   for (int i = 0; i < o.landmarks; ++i) {
     Vec2 p;
     if (o.kind == WorldKind::kClustered) {
       const Vec2& c = centres[i % centres.size()];
-      p = c + o.cluster_sigma_m * Vec2(rng.normal(), rng.normal());
+      p = c + o.cluster_sigma_m * draw_vec2([&] { return rng.normal(); });
       p = p.cwiseMax(0.0).cwiseMin(w.side_m);
     } else {
       p = {rng.uniform() * w.side_m, rng.uniform() * w.side_m};

@@ -361,7 +361,10 @@ TEST(NoiseEstimation, TheDefaultSigmaRespectsHeavyTails) {
   std::exponential_distribution<double> expo(1.0);
   std::bernoulli_distribution sign(0.5);
   const double b_range = 0.05, b_bearing = 0.01;
-  const auto laplace = [&](double b) { return (sign(rng) ? 1.0 : -1.0) * b * expo(rng); };
+  const auto laplace = [&](double b) {
+    const double magnitude = b * expo(rng);  // drawn before the sign: the operands of * are unsequenced
+    return (sign(rng) ? 1.0 : -1.0) * magnitude;
+  };
   for (int k = 0; k < 20000; ++k) {
     ScenarioStep step;
     step.truth_pose = Pose2{0.0, 0.0, 0.0};

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
+#include "core/engine/rng.h"
 #include "core/engine/map_concept.h"
 #include "core/types/box2.h"
 #include "variants/maps/hamt_map.h"
@@ -51,7 +52,7 @@ Landmark random_landmark(LandmarkId id, std::mt19937_64& rng, Vec2 centre = Vec2
   std::normal_distribution<double> n(0.0, 1.0);
   Landmark lm;
   lm.id = id;
-  lm.mean = centre + spread * Vec2(n(rng), n(rng));
+  lm.mean = centre + spread * draw_vec2([&] { return n(rng); });
   const double a = 0.1 + std::abs(n(rng)), b = 0.1 + std::abs(n(rng)), c = 0.05 * n(rng);
   lm.cov << a, c, c, b;
   lm.log_odds = static_cast<float>(n(rng));
@@ -177,14 +178,14 @@ TYPED_TEST(MapConformance, VisitNearEqualsBruteForceScan) {
   Vec2 robot = Vec2::Zero();
   std::normal_distribution<double> n(0.0, 1.0);
   for (LandmarkId id = 0; id < 3000; ++id) {
-    robot += Vec2(n(rng), n(rng)) * 2.0;
+    robot += draw_vec2([&] { return n(rng); }) * 2.0;
     m.insert(random_landmark(id, rng, robot, id % 10 == 0 ? 100.0 : 5.0));
   }
   for (LandmarkId id = 0; id < 3000; id += 5) m.erase(id);
   for (LandmarkId id = 1; id < 3000; id += 5) m.set(random_landmark(id, rng, robot, 40.0));
   std::uniform_real_distribution<double> u(-150.0, 150.0);
   for (int q = 0; q < 200; ++q) {
-    const Vec2 c(u(rng), u(rng));
+    const Vec2 c = draw_vec2([&] { return u(rng); });
     const double half = 1.0 + std::abs(u(rng)) / 5.0;
     const Box2 box{c - Vec2(half, half), c + Vec2(half, half)};
     std::vector<LandmarkId> brute, got;

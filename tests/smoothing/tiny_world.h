@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "core/engine/rng.h"
 #include "core/types/scenario.h"
 #include "core/models/range_bearing_model.h"
 
@@ -62,7 +63,7 @@ inline Scenario make_tiny_world(const TinyWorldOptions& o) {
     // smoother assume). The first motion is exact: no scan precedes it, so its error would rotate the whole
     // solution against the truth (a gauge error no method can see), and the tests compare without alignment.
     const Eigen::LLT<Mat3> llt(s.motion.process_noise(truth, u, dt) + 1e-18 * Mat3::Identity());
-    const Vec3 noise = k == 0 ? Vec3::Zero() : Vec3(llt.matrixL() * Vec3(normal(rng), normal(rng), normal(rng)));
+    const Vec3 noise = k == 0 ? Vec3::Zero() : Vec3(llt.matrixL() * draw_vec3([&] { return normal(rng); }));
     truth = Pose2::from_vector(s.motion.apply(truth, u).vector() + noise);
     const Vec3 measured = u;
     ScenarioStep step;

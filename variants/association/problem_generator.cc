@@ -10,6 +10,7 @@
 #include <Eigen/Cholesky>
 
 #include "core/check.h"
+#include "core/engine/rng.h"
 #include "core/math/angles.h"
 #include "core/models/range_bearing_model.h"
 
@@ -19,7 +20,7 @@ namespace {
 Vec2 sample_gaussian(std::mt19937_64& rng, const Mat2& cov) {
   std::normal_distribution<double> normal(0.0, 1.0);
   const Eigen::LLT<Mat2> llt(cov);
-  const Vec2 u(normal(rng), normal(rng));
+  const Vec2 u = draw_vec2([&] { return normal(rng); });
   return llt.matrixL() * u;
 }
 
@@ -36,9 +37,9 @@ GeneratedProblem generate_association_problem(const ProblemGeneratorOptions& o) 
   const double side = std::sqrt(n / o.density);
 
   g.true_landmarks.resize(n);
-  for (auto& p : g.true_landmarks) p = Vec2(side * unit(rng), side * unit(rng));
+  for (auto& p : g.true_landmarks) p = side * draw_vec2([&] { return unit(rng); });
   g.true_pose = {0.5 * side, 0.5 * side, wrap_angle(kPi * (2.0 * unit(rng) - 1.0))};
-  const Vec3 pose_noise(o.pose_sigma.x() * normal(rng), o.pose_sigma.y() * normal(rng), o.pose_sigma.z() * normal(rng));
+  const Vec3 pose_noise = o.pose_sigma.cwiseProduct(draw_vec3([&] { return normal(rng); }));
   g.prior_pose = Pose2::from_vector(g.true_pose.vector() + pose_noise);
 
   AssociationProblem& p = g.problem;
@@ -82,7 +83,7 @@ GeneratedProblem generate_association_problem(const ProblemGeneratorOptions& o) 
     AssociationMeasurement meas;
     meas.z = range_bearing_predict(g.true_pose, g.true_landmarks[j]);
     max_range = std::max(max_range, meas.z.x());
-    meas.z += Vec2(o.range_sigma * normal(rng), o.bearing_sigma * normal(rng));
+    meas.z += Vec2(o.range_sigma, o.bearing_sigma).cwiseProduct(draw_vec2([&] { return normal(rng); }));
     meas.z = Vec2(std::max(meas.z.x(), 0.0), wrap_angle(meas.z.y()));
     if (signatures) meas.signature = static_cast<float>(true_signature[j] + o.signature_sigma * normal(rng));
     p.measurements.push_back(meas);
@@ -90,7 +91,8 @@ GeneratedProblem generate_association_problem(const ProblemGeneratorOptions& o) 
   }
   for (int k = 0; k < o.clutter; ++k) {
     AssociationMeasurement meas;
-    meas.z = Vec2(max_range * std::sqrt(unit(rng)), wrap_angle(kPi * (2.0 * unit(rng) - 1.0)));
+    const Vec2 u = draw_vec2([&] { return unit(rng); });
+    meas.z = Vec2(max_range * std::sqrt(u.x()), wrap_angle(kPi * (2.0 * u.y() - 1.0)));
     if (signatures) meas.signature = static_cast<float>(0.1 + 0.9 * unit(rng));
     p.measurements.push_back(meas);
     g.truth.push_back(-1);
