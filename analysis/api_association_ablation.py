@@ -57,7 +57,8 @@ def main():
     print(df.groupby(["assoc", "clutter"])["assoc_f1"].mean().unstack().round(3).to_string())
 
     if args.check:
-        sweep = pd.read_csv(os.path.join(args.check, "results.csv"))
+        # round_trip: the default parser may be one ulp off the text, and the check is digit for digit
+        sweep = pd.read_csv(os.path.join(args.check, "results.csv"), float_precision="round_trip")
         merged = df.merge(sweep, on=["clutter", "seed", "assoc"], suffixes=("", "_sweep"))
         if len(merged) != len(df):
             sys.exit(f"{len(df) - len(merged)} runs have no counterpart in {args.check}/results.csv")
