@@ -6,6 +6,9 @@
 #define ARBOR_BENCH_MAP_WORLD_H_
 
 #include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -26,10 +29,19 @@ inline constexpr double kStripWidthM = 30.0;
 inline double field_side_m(std::int64_t n) { return std::sqrt(static_cast<double>(n) / kLandmarksPerSquareMetre); }
 
 // The largest N the map and step benchmarks run: 10^6, or ARBOR_BENCH_MAX_N (a power of ten; 10^7 needs
-// about 4 GB for the trie or tree and a minute to build each prior map).
+// about 4 GB for the trie or tree and a minute to build each prior map). A value that is not a whole number
+// from 100 to 10^7 stops the benchmark with a message, rather than running another range than the one asked.
 inline std::int64_t bench_max_n() {
   const char* text = std::getenv("ARBOR_BENCH_MAX_N");
-  return text ? std::max<std::int64_t>(100, std::atoll(text)) : 1000000;
+  if (!text) return 1000000;
+  std::int64_t n = 0;
+  const char* end = text + std::strlen(text);
+  const auto [ptr, error] = std::from_chars(text, end, n);
+  if (error != std::errc() || ptr != end || n < 100 || n > 10000000) {
+    std::fprintf(stderr, "ARBOR_BENCH_MAX_N=%s: expected a whole number from 100 to 10000000\n", text);
+    std::exit(2);
+  }
+  return n;
 }
 
 // N landmarks uniform over a square of side field_side_m(n) centred on the origin; ids 0..N-1 in the order
