@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Accuracy figure: trajectory error (ATE RMSE) and landmark RMSE against the number of particles, one line per
-filter / map back end / association strategy, mean and 95 % CI over seeds.
+filter / map back end / association strategy, mean and 95 % CI over seeds (the individual values where there are fewer than 3).
 Reads: results.jsonl columns particles, ate_rmse_m, landmark_rmse_m, filter, map, assoc, seed."""
 
 import sys
@@ -20,9 +20,9 @@ def make(df, out_dir, results_path=None):
     for ax, metric in zip(axes[0], metrics):
         for name, g in ar.lines_for(df, "particles", collapse_identical_maps=True):
             s = ar.summarize(g, ["particles"], metric)
-            ax.errorbar(s["particles"], s["mean"], yerr=s["ci"], marker="o", capsize=3, label=name)
+            ax.errorbar(s["particles"], s["mean"], yerr=ar.error_bars(s), marker="o", capsize=3, label=name)
             for _, r in s.iterrows():
-                table.setdefault((name, int(r["particles"])), {})[metric] = f"{ar.fmt_num(r['mean'])} ± {ar.fmt_num(r['ci'], 2)}"
+                table.setdefault((name, int(r["particles"])), {})[metric] = r["text"]
                 table[(name, int(r["particles"]))]["seeds"] = int(r["n"])
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -30,13 +30,13 @@ def make(df, out_dir, results_path=None):
         ax.set_xlabel("particles")
         ax.set_ylabel({"ate_rmse_m": "ATE RMSE (m)", "landmark_rmse_m": "landmark RMSE (m)"}[metric])
     axes[0][0].legend(fontsize=8)
-    fig.suptitle("Accuracy vs particles (mean ± 95 % CI over seeds)")
+    fig.suptitle(f"Accuracy vs particles (mean; ± 95 % CI where there are ≥ {ar.MIN_VALUES_FOR_CI} seeds)")
     ar.save_figure(fig, out_dir, FIGURE)
     rows = [dict(configuration=k[0], particles=k[1], **v) for k, v in sorted(table.items())]
     frame = ar.pd.DataFrame(rows)
     print(frame.to_string(index=False))
     return [ar.Section("Accuracy vs particles",
-                       f"![accuracy vs particles]({FIGURE})\n\n{ar.markdown_table(frame)}\n")]
+                       f"![accuracy vs particles]({FIGURE})\n\n{ar.CI_NOTE}\n\n{ar.markdown_table(frame)}\n")]
 
 
 if __name__ == "__main__":

@@ -136,24 +136,63 @@ def label(row, columns):
     return ", ".join(parts) if parts else "all runs"
 
 
+# Two-sided 95 % Student-t quantiles t(0.975, dof) for dof 1..30, from the standard tables; beyond 30 the
+# Cornish-Fisher expansion is within 0.001 of them.
+T_975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
+         2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042]
+
+
 def t_quantile(dof, q=0.975):
-    """Student-t quantile; scipy when present, else a normal approximation with the Cornish-Fisher term."""
+    """Student-t quantile; scipy when present, else (q = 0.975 only) the table above and a Cornish-Fisher
+    expansion past it."""
     try:
         from scipy import stats
         return float(stats.t.ppf(q, dof))
     except ImportError:
+        if q != 0.975:
+            raise
+        if dof <= 0:
+            return float("inf")
+        if dof <= len(T_975):
+            return T_975[int(dof) - 1]
         z = 1.959963984540054
-        return z + (z ** 3 + z) / (4 * dof) if dof > 0 else float("inf")
+        return z + (z ** 3 + z) / (4 * dof) + (5 * z ** 5 + 16 * z ** 3 + 3 * z) / (96 * dof ** 2)
+
+
+# A 95 % interval is shown only from this many values on. With two, the t quantile is 12.7, so "1.23 ± 10"
+# reads like a result and is noise; with fewer, tables list the individual values instead.
+MIN_VALUES_FOR_CI = 3
+
+
+CI_NOTE = (f"Cells read mean ± 95 % CI over seeds where there are at least {MIN_VALUES_FOR_CI}, and the "
+           "individual values (a / b) where there are fewer.")
+
+
+def finite_values(values):
+    return np.asarray([x for x in values if x is not None and np.isfinite(x)], dtype=float)
 
 
 def mean_ci(values):
-    """Mean and the half-width of its 95 % confidence interval (t distribution; 0 for a single value)."""
-    v = np.asarray([x for x in values if x is not None and np.isfinite(x)], dtype=float)
+    """Mean and the half-width of its 95 % confidence interval (t distribution); the half-width is nan with
+    fewer than MIN_VALUES_FOR_CI values."""
+    v = finite_values(values)
     if len(v) == 0:
         return float("nan"), float("nan")
-    if len(v) == 1:
-        return float(v[0]), 0.0
+    if len(v) < MIN_VALUES_FOR_CI:
+        return float(v.mean()), float("nan")
     return float(v.mean()), float(t_quantile(len(v) - 1) * v.std(ddof=1) / math.sqrt(len(v)))
+
+
+def fmt_mean_ci(values, digits=3):
+    """"mean ± ci" over values, or the values themselves ("0.31 / 0.40") where there are too few for an
+    interval."""
+    v = finite_values(values)
+    if len(v) == 0:
+        return "–"
+    if len(v) < MIN_VALUES_FOR_CI:
+        return " / ".join(fmt_num(float(x), digits) for x in v)
+    m, ci = mean_ci(v)
+    return f"{fmt_num(m, digits)} ± {fmt_num(ci, 2)}"
 
 
 def fit_loglog(x, y):
@@ -181,7 +220,7 @@ def plot_loglog_lines(ax, lines, x, metric):
     for name, g in lines:
         slope, ci, intercept, n = fit_loglog(g[x], g[metric])
         s = summarize(g, [x], metric)
-        line = ax.errorbar(s[x], s["mean"], yerr=s["ci"], marker="o", capsize=3, linestyle="none",
+        line = ax.errorbar(s[x], s["mean"], yerr=error_bars(s), marker="o", capsize=3, linestyle="none",
                            label=f"{name}: slope {slope:.2f} ± {ci:.2f}" if np.isfinite(ci) else f"{name}: slope {slope:.2f}")
         if np.isfinite(slope):
             xs = np.logspace(np.log10(s[x].min()), np.log10(s[x].max()), 50)
@@ -193,15 +232,20 @@ def plot_loglog_lines(ax, lines, x, metric):
 
 
 def summarize(df, by, metric):
-    """Mean and 95 % CI of `metric` per group of `by` (sorted), as a DataFrame with mean, ci, n."""
+    """Per group of `by` (sorted): mean, ci (95 % half-width; nan with fewer than MIN_VALUES_FOR_CI values),
+    n, and text (fmt_mean_ci: the mean and interval, or the individual values)."""
     rows = []
     for key, group in df.groupby(by if len(by) > 1 else by[0], dropna=False, sort=True):
-        m, ci = mean_ci(group[metric].to_numpy(dtype=float))
+        values = group[metric].to_numpy(dtype=float)
+        m, ci = mean_ci(values)
         key = key if isinstance(key, tuple) else (key,)
-        rows.append(dict(zip(by, key), mean=m, ci=ci, n=int(group[metric].notna().sum())))
-    out = pd.DataFrame(rows)
-    out["ci"] = out["ci"].fillna(0.0)
-    return out
+        rows.append(dict(zip(by, key), mean=m, ci=ci, n=int(group[metric].notna().sum()), text=fmt_mean_ci(values)))
+    return pd.DataFrame(rows)
+
+
+def error_bars(summary):
+    """The yerr of a summarize() frame for errorbar(): no bar where there is no interval."""
+    return summary["ci"].fillna(0.0)
 
 
 def fmt_num(v, digits=3):
@@ -235,13 +279,14 @@ def save_figure(fig, out_dir, name):
     return path
 
 
-def figure_section(fig, out_dir, figure, title, rows):
-    """Saves fig as `figure`, prints `rows` as a table, and returns the report section: the figure, then the
-    table."""
+def figure_section(fig, out_dir, figure, title, rows, note=""):
+    """Saves fig as `figure`, prints `rows` as a table, and returns the report section: the figure, the note,
+    then the table."""
     save_figure(fig, out_dir, figure)
     frame = pd.DataFrame(rows)
     print(frame.to_string(index=False))
-    return [Section(title, f"![{title.lower()}]({figure})\n\n{markdown_table(frame)}\n")]
+    note = f"{note}\n\n" if note else ""
+    return [Section(title, f"![{title.lower()}]({figure})\n\n{note}{markdown_table(frame)}\n")]
 
 
 def read_study_runs(pattern, regex, fields):

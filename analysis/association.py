@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Association figure: precision, recall and F1 of the association decisions against clutter (spurious
-measurements per scan), one line per strategy, mean and 95 % CI over seeds.
+measurements per scan), one line per strategy, mean and 95 % CI over seeds (the individual values where there are fewer than 3).
 Reads: results.jsonl columns clutter, assoc, assoc_f1 (assoc_precision, assoc_recall when present)."""
 
 import sys
@@ -22,16 +22,16 @@ def make(df, out_dir, results_path=None):
     for ax, metric in zip(axes[0], metrics):
         for name, g in ar.lines_for(df, "clutter", collapse_identical_maps=True):
             s = ar.summarize(g, ["clutter"], metric)
-            ax.errorbar(s["clutter"], s["mean"], yerr=s["ci"], marker="o", capsize=3, label=name)
+            ax.errorbar(s["clutter"], s["mean"], yerr=ar.error_bars(s), marker="o", capsize=3, label=name)
             if metric == "assoc_f1":
                 for _, r in s.iterrows():
-                    rows.append({"strategy": name, "clutter": r["clutter"], "F1": r["mean"], "ci95": r["ci"], "seeds": r["n"]})
+                    rows.append({"strategy": name, "clutter (/scan)": r["clutter"], "F1": r["text"], "seeds": r["n"]})
         ax.set_xlabel("clutter (spurious measurements per scan)")
         ax.set_title({"assoc_f1": "F1", "assoc_precision": "precision", "assoc_recall": "recall"}[metric])
         ax.grid(True, alpha=0.3)
     axes[0][0].set_ylabel("score")
     axes[0][0].legend(fontsize=8)
-    return ar.figure_section(fig, out_dir, FIGURE, "Association vs clutter", rows)
+    return ar.figure_section(fig, out_dir, FIGURE, "Association vs clutter", rows, ar.CI_NOTE)
 
 
 if __name__ == "__main__":

@@ -26,16 +26,16 @@ def make(df, out_dir, results_path=None):
     groups, joined = ar.drop_identical_map_backends(joined, groups, scenario + ["seed"])
     rows = []
     for key, g in joined.groupby(groups, sort=True):
-        ratio, ratio_ci = ar.mean_ci(g["ate_ratio"])
         rows.append({"configuration": ar.label(g.iloc[0], groups), "runs": len(g),
                      "ATE (m)": g["ate_rmse_m"].mean(), "smoother ATE (m)": g["ate_rmse_m_smoother"].mean(),
-                     "ATE ratio": ratio, "ratio ci95": ratio_ci,
+                     "ATE ratio": ar.fmt_mean_ci(g["ate_ratio"]),
                      "landmark RMSE (m)": g["landmark_rmse_m"].mean(),
                      "smoother landmark RMSE (m)": g["landmark_rmse_m_smoother"].mean()})
     frame = ar.pd.DataFrame(rows)
     print(frame.to_string(index=False))
     return [ar.Section("FastSLAM vs smoother",
-                       "Same scenarios and seeds; ratio = FastSLAM ATE / smoother ATE per run, mean ± 95 % CI"
+                       "Same scenarios and seeds; ratio = FastSLAM ATE / smoother ATE per run, mean ± 95 % CI (the "
+                       f"individual ratios where there are fewer than {ar.MIN_VALUES_FOR_CI} runs)"
                        + ("" if "map" in groups else "; one row per configuration for all map back ends, whose "
                           "output agrees run for run") + ".\n\n"
                        f"{ar.markdown_table(frame)}\n")]

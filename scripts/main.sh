@@ -16,4 +16,6 @@ for study in default default_locality default_victoria_park; do
 done
 echo
 echo "arbor: the default study is done. Reports:"
-for study in default default_locality default_victoria_park; do echo "  $out/$study/report/report.md"; done
+for study in default default_locality default_victoria_park; do
+  echo "  $out/$study/report/report.md  (and report.html, one self-contained page)"
+done

@@ -40,12 +40,25 @@ TEST_F(AnalysisScripts, ReportBuildsEveryFigureAndTableFromTheFixture) {
     EXPECT_GT(std::filesystem::file_size(out / figure), 1000u) << figure;
     EXPECT_NE(report.find(std::string("(") + figure + ")"), std::string::npos) << figure << " not linked";
   }
-  for (const char* section : {"## FastSLAM vs smoother", "## Runs that did not finish", "synthetic failure"})
+  for (const char* section : {"## FastSLAM vs smoother", "## Paired comparisons", "## Runs that did not finish",
+                              "synthetic failure"})
     EXPECT_NE(report.find(section), std::string::npos) << section;
   // The fixture's slopes are known by construction: naive ~1, tree ~0 (see make_fixture.py).
   EXPECT_NE(read_text(out / "log.txt").find("naive: log-log slope 0.9"), std::string::npos) << read_text(out / "log.txt");
   // The half-written last row of the fixture is not a row.
   EXPECT_EQ(report.find("half-written"), std::string::npos);
+  EXPECT_EQ(report.find("|  |"), std::string::npos) << "an empty table cell";
+  // The same report as one self-contained page: every figure embedded, nothing fetched, no empty table.
+  const std::string page = read_text(out / "report.html");
+  std::size_t embedded = 0;
+  for (std::size_t at = page.find("<img "); at != std::string::npos; at = page.find("<img ", at + 1)) {
+    EXPECT_EQ(page.compare(page.find("src=", at), 27, "src=\"data:image/png;base64,"), 0) << page.substr(at, 80);
+    ++embedded;
+  }
+  EXPECT_EQ(embedded, 6u);
+  EXPECT_EQ(page.find("<tbody>\n</tbody>"), std::string::npos) << "an empty table";
+  EXPECT_EQ(page.find("http"), std::string::npos) << "a network reference";
+  EXPECT_NE(page.find("<strong>What this shows</strong>"), std::string::npos);
 }
 
 // The report imports every figure module; the scripts' own command line is one shared wrapper
@@ -107,6 +120,82 @@ TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
   EXPECT_NE(table.find("| rooms | 2 | known | 2 | 0.98 | 1 | 0.3 | 1 | 1 |"), std::string::npos) << table;
   EXPECT_NE(table.find("| rooms | 2 | jcbb | 2 | 0.98 | 1 | 0.45 | 1.5 | 1.05 |"), std::string::npos) << table;
   EXPECT_GT(std::filesystem::file_size(out / "clutter.png"), 1000u);
+}
+
+// Honest statistics: with two seeds a table lists both values, not "mean ± 12.7 standard errors"; a paired
+// comparison pairs runs by scenario and seed, gives no interval below three pairs, and calls a difference
+// significant only when its interval excludes zero. Here JCBB's ATE is below NN's on every one of 4 seeds by
+// 0.1 m, while the seeds' own ATEs spread over 1 m: unpaired, the intervals would overlap.
+TEST_F(AnalysisScripts, PairedComparisonsPairBySeedAndNeedThreePairs) {
+  ScratchDir out("paired");
+  const auto row = [](const std::string& assoc, int seed, double ate, int particles) {
+    return "{\"key\":\"" + assoc + std::to_string(seed) + "p" + std::to_string(particles) +
+           "\",\"status\":\"ok\",\"filter\":\"fastslam2\",\"map\":\"tree\",\"assoc\":\"" + assoc +
+           "\",\"particles\":" + std::to_string(particles) + ",\"seed\":" + std::to_string(seed) +
+           ",\"threads\":1,\"scenario\":\"s" + std::to_string(seed) + "\",\"ate_rmse_m\":" + std::to_string(ate) +
+           "}\n";
+  };
+  {
+    std::ofstream f(out / "results.jsonl");
+    for (int seed = 1; seed <= 4; ++seed) {
+      f << row("nn", seed, 0.5 * seed + 0.1, 100) << row("jcbb", seed, 0.5 * seed, 100);
+      if (seed <= 2) f << row("nn", seed, 0.5 * seed + 0.3, 10) << row("jcbb", seed, 0.5 * seed, 10);
+    }
+  }
+  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
+                             "import arbor_results as ar, accuracy, paired\n"
+                             "df = ar.load_results('" + out.str() + "')\n"
+                             "for s in accuracy.make(df, '" + out.str() + "') + paired.make(df, '" + out.str() + "'):"
+                             " print(s.text)\n";
+  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
+  const std::string log = read_text(out / "log.txt");
+  // 10 particles: two seeds, so the two values (0.5 and 1); 100 particles: four, so an interval.
+  EXPECT_NE(log.find("| jcbb | 10 | 0.5 / 1 | 2 |"), std::string::npos) << log;
+  EXPECT_NE(log.find("| jcbb | 100 | 1.25 ± 1 | 4 |"), std::string::npos) << log;
+  // All 6 pairs have JCBB lower: the 4 at 100 particles by 0.1 m, the 2 at 10 by 0.3 m.
+  EXPECT_NE(log.find("| jcbb − nn | ATE RMSE | 6 | -0.167 | ± 0.11 | 6 / 0 | yes |"), std::string::npos) << log;
+  EXPECT_NE(log.find("- **jcbb** beats nn on ATE RMSE"), std::string::npos) << log;
+  // Particles: two seeds × two strategies pair; NN gains 0.2 m from more particles, JCBB nothing: no claim.
+  EXPECT_NE(log.find("| particles = 10 − particles = 100 | ATE RMSE | 4 | 0.1 | ± 0.18 | 0 / 2 | no |"),
+            std::string::npos) << log;
+  EXPECT_EQ(log.find("beats particles"), std::string::npos) << log;
+}
+
+// A real dataset's report opens with its accuracy table: the reference named from the scenario's metadata,
+// dead reckoning beside the filter, and the run time against the data's duration; a simulated sweep has none.
+TEST_F(AnalysisScripts, DatasetSweepsGetAnAccuracyTableAgainstTheirReference) {
+  ScratchDir out("dataset");
+  {
+    std::ofstream rows(out / "results.jsonl");
+    for (const char* assoc : {"nn", "jcbb"})
+      for (int seed = 1; seed <= 3; ++seed) {
+        const std::string key = std::string(assoc) + std::to_string(seed);
+        rows << R"({"key":")" << key << R"(","status":"ok","dataset":"d/park.scn","filter":"fastslam2","map":"trie",)"
+             << R"("assoc":")" << assoc << R"(","particles":100,"seed":)" << seed << R"(,"threads":1,"scenario":"d/park.scn",)"
+             << R"("run_dir":"runs/)" << key << R"(","ate_rmse_m":)" << (assoc == std::string("nn") ? 2.0 : 1.0) + 0.1 * seed
+             << R"(,"landmarks":200,"wall_time_s":10})" << "\n";
+        const std::filesystem::path run = std::filesystem::path(out.str()) / "runs" / key;
+        std::filesystem::create_directories(run);
+        std::ofstream(run / "result.json")
+            << R"({"scenario_duration_s":1500,"dead_reckoning_ate_m":93.1,"scenario":{"truth_track":"gps_track",)"
+            << R"("source":"victoria-park","citation":"Guivant2001"}})";
+      }
+  }
+  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
+                             "import arbor_results as ar, dataset_accuracy\n"
+                             "df = ar.load_results('" + out.str() + "')\n"
+                             "for s in dataset_accuracy.make(df, '" + out.str() + "', '" + out.str() + "'):"
+                             " print('##', s.title); print(s.text)\n"
+                             "print('simulated:', dataset_accuracy.make(df.assign(dataset=None), '" + out.str() +
+                             "', '" + out.str() + "'))\n";
+  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
+  const std::string log = read_text(out / "log.txt");
+  EXPECT_NE(log.find("## Accuracy on park"), std::string::npos) << log;
+  EXPECT_NE(log.find("reference trajectory `gps_track`; source `victoria-park`; citation `Guivant2001`; 1500 s of data"),
+            std::string::npos) << log;
+  EXPECT_NE(log.find("| jcbb | 3 | 1.2 ± 0.25 | 93.1 | 200 | 10 | 150× |"), std::string::npos) << log;
+  EXPECT_NE(log.find("| nn | 3 | 2.2 ± 0.25 | 93.1 | 200 | 10 | 150× |"), std::string::npos) << log;
+  EXPECT_NE(log.find("simulated: []"), std::string::npos) << log;
 }
 
 }  // namespace

@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""The report as one self-contained HTML file (report.html beside report.md): figures embedded as data URIs,
+tables sortable by a click on their header with a few lines of inline script, no network and nothing but the
+standard library. It renders the subset of Markdown the report's sections use: headings, paragraphs, bullet
+lists, pipe tables, fenced code, images, **bold** and `code`."""
+
+import base64
+import html
+import os
+import re
+
+STYLE = """
+body { font-family: sans-serif; max-width: 72em; margin: 2em auto; padding: 0 1em; line-height: 1.4; color: #222; }
+h1 { border-bottom: 2px solid #446; } h2 { border-bottom: 1px solid #ccd; margin-top: 2em; }
+table { border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }
+th, td { border: 1px solid #ccd; padding: 0.25em 0.6em; text-align: left; }
+th { background: #eef; cursor: pointer; user-select: none; } th:hover { background: #dde; }
+tr:nth-child(even) td { background: #f8f8fc; }
+img { max-width: 100%; display: block; margin: 1em 0; }
+code { background: #f2f2f6; padding: 0 0.2em; }
+pre { background: #f2f2f6; padding: 0.5em 1em; overflow-x: auto; font-size: 0.85em; }
+"""
+
+# Sorts a table by the clicked column: numerically where both cells start with a number, else as text;
+# a second click reverses.
+SCRIPT = """
+document.querySelectorAll('table').forEach(function (table) {
+  table.querySelectorAll('th').forEach(function (th, column) {
+    th.title = 'sort by this column';
+    th.addEventListener('click', function () {
+      var body = table.tBodies[0], rows = Array.prototype.slice.call(body.rows);
+      var up = th.dataset.order !== 'up'; th.dataset.order = up ? 'up' : 'down';
+      var key = function (row) { var t = row.cells[column].textContent.trim(); var n = parseFloat(t);
+                                 return isNaN(n) ? t : n; };
+      rows.sort(function (a, b) { var x = key(a), y = key(b);
+        var c = (typeof x === 'number' && typeof y === 'number') ? x - y : String(x).localeCompare(String(y));
+        return up ? c : -c; });
+      rows.forEach(function (row) { body.appendChild(row); });
+    });
+  });
+});
+"""
+
+
+def inline(text):
+    """Escapes text and renders **bold** and `code`."""
+    out = html.escape(text, quote=False)
+    out = re.sub(r"`([^`]+)`", r"<code>\1</code>", out)
+    return re.sub(r"\*\*([^*]+)\*\*", r"<strong>\1</strong>", out)
+
+
+def image(alt, path, base_dir):
+    """An <img> with the file embedded; a missing file is said in words (never a broken image)."""
+    full = os.path.join(base_dir, path)
+    if not os.path.exists(full):
+        return f"<p><em>(figure {html.escape(path)} is missing)</em></p>"
+    with open(full, "rb") as f:
+        data = base64.b64encode(f.read()).decode("ascii")
+    kind = "png" if path.lower().endswith(".png") else "svg+xml" if path.lower().endswith(".svg") else "jpeg"
+    return f'<img alt="{html.escape(alt)}" src="data:image/{kind};base64,{data}">'
+
+
+def table(lines):
+    cells = [[c.strip() for c in line.strip().strip("|").split("|")] for line in lines]
+    head, body = cells[0], [r for r in cells[2:]]
+    out = ["<table><thead><tr>" + "".join(f"<th>{inline(c)}</th>" for c in head) + "</tr></thead><tbody>"]
+    out += ["<tr>" + "".join(f"<td>{inline(c)}</td>" for c in row) + "</tr>" for row in body]
+    return "\n".join(out + ["</tbody></table>"])
+
+
+def markdown_to_html(text, base_dir):
+    """The report's Markdown subset as HTML."""
+    out, lines, i = [], text.split("\n"), 0
+    while i < len(lines):
+        line = lines[i]
+        if not line.strip():
+            i += 1
+        elif line.startswith("```"):
+            j = i + 1
+            while j < len(lines) and not lines[j].startswith("```"):
+                j += 1
+            out.append("<pre>" + html.escape("\n".join(lines[i + 1:j]), quote=False) + "</pre>")
+            i = j + 1
+        elif line.startswith("#"):
+            level = len(line) - len(line.lstrip("#"))
+            out.append(f"<h{level}>{inline(line[level:].strip())}</h{level}>")
+            i += 1
+        elif line.startswith("|"):
+            j = i
+            while j < len(lines) and lines[j].startswith("|"):
+                j += 1
+            out.append(table(lines[i:j]))
+            i = j
+        elif re.fullmatch(r"!\[[^\]]*\]\([^)]+\)", line.strip()):
+            alt, path = re.fullmatch(r"!\[([^\]]*)\]\(([^)]+)\)", line.strip()).groups()
+            out.append(image(alt, path, base_dir))
+            i += 1
+        elif line.startswith("- "):
+            items = []
+            while i < len(lines) and lines[i].startswith("- "):
+                items.append(f"<li>{inline(lines[i][2:])}</li>")
+                i += 1
+            out.append("<ul>" + "".join(items) + "</ul>")
+        else:
+            j = i
+            while j < len(lines) and lines[j].strip() and not lines[j].startswith(("#", "|", "- ", "![", "```")):
+                j += 1
+            out.append("<p>" + inline(" ".join(lines[i:j])) + "</p>")
+            i = j
+    return "\n".join(out)
+
+
+def write(markdown, out_dir, title):
+    """Writes out_dir/report.html from the report's Markdown (figure paths relative to out_dir)."""
+    page = (f"<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{html.escape(title)}</title>"
+            f"<style>{STYLE}</style></head><body>\n{markdown_to_html(markdown, out_dir)}\n"
+            f"<script>{SCRIPT}</script></body></html>\n")
+    path = os.path.join(out_dir, "report.html")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(page)
+    return path
