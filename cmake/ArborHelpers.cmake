@@ -13,6 +13,23 @@ function(arbor_glob out)
   set(${out} ${files} PARENT_SCOPE)
 endfunction()
 
+# arbor_precompile_headers(target): precompiles the standard, Eigen, fmt and GoogleTest headers for a test
+# binary, under clang only, where it saves up to 4 s of each sanitized test file (models_test 29.7 s to 25.4 s,
+# factors_test 20.3 s to 16.3 s on the 2-core VM), about a tenth of CI's sanitizer build. Not for the
+# libraries: there it saved nothing or cost time (fastslam_run.cc 22.5 s to 27.8 s). Not for gcc 12, which
+# spends longer building the header (11 s) than the files gain; gcc builds, the Release one included, parse
+# as before and keep checking that every file includes what it uses. Only third-party and standard headers
+# go in, so a change to Arbor's own headers rebuilds what includes them and no more.
+function(arbor_precompile_headers target)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang" OR NOT ARBOR_PRECOMPILE_HEADERS)
+    return()
+  endif()
+  target_precompile_headers(${target} PRIVATE
+    <algorithm> <array> <cmath> <cstdint> <filesystem> <fstream> <map> <memory> <optional> <random> <sstream>
+    <string> <string_view> <unordered_map> <utility> <vector>
+    <Eigen/Cholesky> <Eigen/Core> <Eigen/Eigenvalues> <Eigen/LU> <fmt/core.h> <fmt/format.h> <gtest/gtest.h>)
+endfunction()
+
 # arbor_add_test(name DIRS dir... DEPS target...): one GoogleTest binary from every .cc in DIRS.
 function(arbor_add_test name)
   cmake_parse_arguments(ARG "" "" "DIRS;DEPS" ${ARGN})
@@ -23,6 +40,7 @@ function(arbor_add_test name)
   add_executable(${name} ${srcs})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main arbor_options)
   target_compile_definitions(${name} PRIVATE ARBOR_TEST_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  arbor_precompile_headers(${name})
   gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_TIMEOUT 60
                        PROPERTIES ENVIRONMENT "ARBOR_BINARY_DIR=${PROJECT_BINARY_DIR}")
 endfunction()
