@@ -66,6 +66,18 @@ def method_columns(df):
     return METHOD + run_option_columns(df)
 
 
+def map_size_column(df):
+    """The column that gives a run's map size on a complexity figure's x axis, or None when the rows do not vary
+    it: the swept world_landmarks, else the estimated map's own size where it spans a factor of 4 or more
+    (runs on datasets of different sizes). Seeds on one dataset give maps of 201 and 202 landmarks, which is
+    no complexity axis."""
+    if has_data(df, "world_landmarks") and df["world_landmarks"].nunique() > 1:
+        return "world_landmarks"
+    if has_data(df, "landmarks") and df["landmarks"].min() > 0 and df["landmarks"].max() >= 4 * df["landmarks"].min():
+        return "landmarks"
+    return None
+
+
 def ok_rows(df):
     return df[df["status"] == "ok"].copy() if "status" in df else df
 

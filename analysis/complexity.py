@@ -12,7 +12,7 @@ FIGURE = "complexity_step_time.png"
 
 def make(df, out_dir, results_path=None):
     df = ar.ok_rows(df)
-    x_col = "world_landmarks" if ar.has_data(df, "world_landmarks") else "landmarks"
+    x_col = ar.map_size_column(df)
     if not ar.has_data(df, x_col, "step_time_median_s", "map") or df[x_col].nunique() < 2:
         return []
     df = df[df["step_time_median_s"].notna()]

@@ -17,7 +17,7 @@ def make(df, out_dir, results_path=None):
     if ar.has_data(df, "hypotheses", "steps"):  # `arbor run` reports the run's total; per step compares runs
         df["hypotheses_per_step"] = df["hypotheses"] / df["steps"]
     metric = next((c for c in CANDIDATES if ar.has_data(df, c)), None)
-    x_col = "world_landmarks" if ar.has_data(df, "world_landmarks") else "landmarks"
+    x_col = ar.map_size_column(df)
     if metric is None or not ar.has_data(df, x_col) or df[x_col].nunique() < 2:
         return []
     df = df[df[metric].notna()]
