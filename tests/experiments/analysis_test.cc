@@ -198,5 +198,39 @@ TEST_F(AnalysisScripts, DatasetSweepsGetAnAccuracyTableAgainstTheirReference) {
   EXPECT_NE(log.find("simulated: []"), std::string::npos) << log;
 }
 
+// The filter over time: a table row per configuration from its representative run's steps.csv (the largest
+// particle count), and the figure with step time per back end and N_eff per strategy.
+TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {
+  ScratchDir out("steps");
+  {
+    std::ofstream rows(out / "results.jsonl");
+    for (const char* map : {"tree", "trie"})
+      for (int particles : {10, 100}) {
+        const std::string key = std::string(map) + std::to_string(particles);
+        rows << R"({"key":")" << key << R"(","status":"ok","filter":"fastslam2","map":")" << map
+             << R"(","assoc":"nn","particles":)" << particles << R"(,"seed":1,"threads":1,"scenario":"s","run_dir":"runs/)"
+             << key << R"("})" << "\n";
+        const std::filesystem::path run = std::filesystem::path(out.str()) / "runs" / key;
+        std::filesystem::create_directories(run);
+        std::ofstream steps(run / "steps.csv");
+        steps << "step,time_s,step_time_s,n_eff,resampled\n";
+        // 100 particles: steps of 1, 2, 3, 4 ms with N_eff 50 or 100, resampled once in four.
+        for (int k = 0; k < 4; ++k)
+          steps << k << "," << 0.5 * k << "," << 0.001 * (k + 1) << "," << (k % 2 ? 50 : particles) << ","
+                << (k == 3 ? 1 : 0) << "\n";
+      }
+  }
+  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
+                             "import arbor_results as ar, step_series\n"
+                             "df = ar.load_results('" + out.str() + "')\n"
+                             "for s in step_series.make(df, '" + out.str() + "', '" + out.str() + "'): print(s.text)\n";
+  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
+  const std::string log = read_text(out / "log.txt");
+  EXPECT_NE(log.find("| tree | 100 | 2.5 | 3.85 | 0.75 | 25 % |"), std::string::npos) << log;
+  EXPECT_NE(log.find("| trie | 100 | 2.5 | 3.85 | 0.75 | 25 % |"), std::string::npos) << log;
+  EXPECT_EQ(log.find("| 10 |"), std::string::npos) << "only the largest particle count: " << log;
+  EXPECT_GT(std::filesystem::file_size(std::filesystem::path(out.str()) / "step_time_and_neff.png"), 1000u);
+}
+
 }  // namespace
 }  // namespace arbor
