@@ -4,7 +4,7 @@
 # (clang), the fuzz targets among them for a fixed number of inputs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install_dependencies.sh
+scripts/install_dependencies.sh --tests
 start=$(date +%s)
 scripts/build.sh build -DCMAKE_BUILD_TYPE=Release
 (cd build && ctest -j "$(nproc)" --output-on-failure --timeout 600)
@@ -21,7 +21,8 @@ scripts/build.sh build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelW
 # 2 cores, and the four below them): they assert accuracy, consistency or an unchanged run over many runs,
 # and the code they walk is walked under the sanitizers by other tests of the same suites (the kidnapped-robot
 # test, for relocalisation). The Python-only
-# tests (analysis scripts, the include graph) run no sanitized code. This keeps CI within its 30 minutes.
+# tests (analysis scripts, the include graph) run no sanitized code, and the Slurm test checks a script and the
+# daemons, not C++ that the other sanitized tests do not run. This keeps CI within its 30 minutes.
 slow='Relocalize\.ARobotThatIsNotLostIsNeverReseeded'
 slow+='|AssociationEngine\.FastSlam2WithJcbbMatchesKnownAssociationOnAClutteredWorld'
 slow+='|FastSlamRun\.FastSlam2IsConsistentOnAShortHorizonOver30Seeds'
@@ -29,5 +30,5 @@ slow+='|UnknownAssociation\.Fastslam2WithJcbbMatchesKnownAssociationOnACluttered
 slow+='|MultiRate\.PerScanSamplingIsConsistentOnAShortHorizonOver30Seeds'
 slow+='|RealData\.UtiasRobot1WithKnownAssociationAteFarBelowDeadReckoning'
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-   ctest -j "$(nproc)" --output-on-failure --timeout 1200 -E "^(($slow)|AnalysisScripts\..*|Layering\..*)\$")
+   ctest -j "$(nproc)" --output-on-failure --timeout 1200 -E "^(($slow)|AnalysisScripts\..*|Layering\..*|Slurm\..*)\$")
 echo "arbor: all tests passed (Release; ASan+UBSan with fuzz targets) in $(( $(date +%s) - start )) s"
