@@ -114,7 +114,9 @@ TEST_P(MalformedScenario, ErrorNamesFileLineAndField) {
     FAIL() << "accepted a malformed scenario: " << c.name;
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), bad);
-    if (c.expect_line != 0) EXPECT_EQ(e.line(), c.expect_line == -1 ? target + 1 : c.expect_line) << e.what();
+    if (c.expect_line != 0) {
+      EXPECT_EQ(e.line(), c.expect_line == -1 ? target + 1 : c.expect_line) << e.what();
+    }
     EXPECT_EQ(e.field(), c.expect_field) << e.what();
     EXPECT_NE(std::string(e.what()).find(bad), std::string::npos);
   }

@@ -248,7 +248,9 @@ TEST_P(HostileInput, ExitsCleanlyAndSaysWhere) {
   c.setup(dir);
   const auto r = testing::run_command(substitute(c.command, dir));
   EXPECT_EQ(r.exit_code, c.exit_code) << r.output;
-  if (!c.message.empty()) EXPECT_TRUE(std::regex_search(r.output, std::regex(c.message))) << c.message << "\n" << r.output;
+  if (!c.message.empty()) {
+    EXPECT_TRUE(std::regex_search(r.output, std::regex(c.message))) << c.message << "\n" << r.output;
+  }
   // CLI11's own range checks printed the largest double in full, 309 digits.
   EXPECT_FALSE(std::regex_search(r.output, std::regex("[0-9]{40}"))) << r.output;
   const fs::path result = dir / "out" / "result.json";

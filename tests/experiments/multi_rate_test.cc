@@ -51,7 +51,7 @@ TEST(MultiRate, AccumulatedCovarianceIsTheChainOfPredictions) {
     Mat3 P = Mat3::Zero();
     for (int k = 1; k <= 9; ++k) {
       const Mat3 Q = s.motion.process_noise(x, s.steps[k].control, s.steps[k].time_s - s.steps[k - 1].time_s);
-      Mat3 G;
+      Mat3 G = Mat3::Zero();  // apply() fills it; zeroed so that gcc 12 sees no read before a write
       x = s.motion.apply(x, s.steps[k].control, &G);
       P = G * P * G.transpose() + Q;
     }

@@ -111,7 +111,7 @@ TEST_P(ChainedMotion, MatchesPropagationFromAnArbitraryStart) {
     Mat3 P = Mat3::Zero();
     for (int k = kept[f] + 1; k <= kept[f + 1]; ++k) {
       const Mat3 Q = s.motion.process_noise(x, s.steps[k].control, s.steps[k].time_s - (k > 0 ? s.steps[k - 1].time_s : s.start_time_s));
-      Mat3 Jx;
+      Mat3 Jx = Mat3::Zero();  // apply() fills it; zeroed so that gcc 12 sees no read before a write
       x = s.motion.apply(x, s.steps[k].control, &Jx);
       P = Jx * P * Jx.transpose() + Q;
     }
