@@ -21,9 +21,18 @@ code { background: #f2f2f6; padding: 0 0.2em; }
 pre { background: #f2f2f6; padding: 0.5em 1em; overflow-x: auto; font-size: 0.85em; }
 """
 
-# Sorts a table by the clicked column: numerically where both cells start with a number, else as text;
-# a second click reverses.
+# Records on <body> how many figures the browser decoded and how many tables are empty, and sorts a table by
+# the clicked column: numerically where both cells start with a number, else as text; a second click reverses.
 SCRIPT = """
+window.addEventListener('load', function () {
+  // What a browser test reads back (tests/experiments/analysis_test.cc): figures decoded, tables not empty.
+  var images = Array.prototype.slice.call(document.images);
+  var loaded = images.filter(function (img) { return img.complete && img.naturalWidth > 0; }).length;
+  document.body.dataset.imagesLoaded = loaded;
+  document.body.dataset.imagesBroken = images.length - loaded;
+  document.body.dataset.emptyTables = Array.prototype.slice.call(document.querySelectorAll('table'))
+    .filter(function (t) { return !t.tBodies.length || t.tBodies[0].rows.length === 0; }).length;
+});
 document.querySelectorAll('table').forEach(function (table) {
   table.querySelectorAll('th').forEach(function (th, column) {
     th.title = 'sort by this column';

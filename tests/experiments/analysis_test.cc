@@ -232,5 +232,32 @@ TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {
   EXPECT_GT(std::filesystem::file_size(std::filesystem::path(out.str()) / "step_time_and_neff.png"), 1000u);
 }
 
+// The HTML report in a real browser (headless Chromium, Debian's chromium-headless-shell): the page's own
+// script records on <body> how many figures were decoded and how many tables are empty. A copy with one
+// figure's bytes damaged must count one broken figure, so the check can fail.
+TEST_F(AnalysisScripts, HtmlReportRendersInHeadlessChromium) {
+  std::string browser;
+  for (const char* candidate : {"/usr/bin/chromium-headless-shell", "/usr/bin/chromium"})
+    if (std::filesystem::exists(candidate)) browser = candidate;
+  if (browser.empty()) GTEST_SKIP() << "no headless Chromium (Debian: apt install chromium-headless-shell)";
+  ScratchDir out("browser");
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/report", fixture(), "--out", out.str()}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  const auto body_of = [&](const std::string& page) {
+    const std::string dom = out / (page + ".dom");
+    run_to_end({browser, "--no-sandbox", "--disable-gpu", "--virtual-time-budget=10000", "--dump-dom",
+                "file://" + (out / page)}, dom);
+    const std::string text = read_text(dom);
+    const std::size_t at = text.find("<body");
+    return at == std::string::npos ? text : text.substr(at, text.find('>', at) - at + 1);
+  };
+  EXPECT_EQ(body_of("report.html"), R"(<body data-images-loaded="6" data-images-broken="0" data-empty-tables="0">)");
+  std::string page = read_text(out / "report.html");
+  const std::size_t figure = page.find("base64,") + 7;
+  page.replace(figure, 40, std::string(40, 'A'));  // the PNG signature and header gone
+  std::ofstream(out / "damaged.html") << page;
+  EXPECT_EQ(body_of("damaged.html"), R"(<body data-images-loaded="5" data-images-broken="1" data-empty-tables="0">)");
+}
+
 }  // namespace
 }  // namespace arbor
