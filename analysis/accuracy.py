@@ -8,6 +8,7 @@ import sys
 import arbor_results as ar
 
 FIGURE = "accuracy_vs_particles.png"
+COLUMNS = {"ate_rmse_m": "ATE RMSE (m)", "landmark_rmse_m": "landmark RMSE (m)"}
 
 
 def make(df, out_dir, results_path=None):
@@ -22,7 +23,7 @@ def make(df, out_dir, results_path=None):
             s = ar.summarize(g, ["particles"], metric)
             ax.errorbar(s["particles"], s["mean"], yerr=ar.error_bars(s), marker="o", capsize=3, label=name)
             for _, r in s.iterrows():
-                table.setdefault((name, int(r["particles"])), {})[metric] = r["text"]
+                table.setdefault((name, int(r["particles"])), {})[COLUMNS[metric]] = r["text"]
                 table[(name, int(r["particles"]))]["seeds"] = int(r["n"])
         ax.set_xscale("log")
         ax.set_yscale("log")

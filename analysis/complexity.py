@@ -24,7 +24,7 @@ def make(df, out_dir, results_path=None):
     fig, ax = ar.new_figure()
     rows = []
     for name, slope, ci, n, s in ar.plot_loglog_lines(ax, lines, x_col, "step_time_median_s"):
-        rows.append({"configuration": name, "slope": slope, "ci95": ci, "points": n,
+        rows.append({"configuration": name, "log-log slope": slope, "slope 95 % CI ±": ci, "points": n,
                      "N min": s[x_col].min(), "N max": s[x_col].max(),
                      "step time at N max (s)": s["mean"].iloc[-1]})
         print(f"complexity: {name}: log-log slope {slope:.3f} ± {ci:.3f} (95 % CI, {n} points)")

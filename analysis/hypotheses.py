@@ -29,7 +29,7 @@ def make(df, out_dir, results_path=None):
     fig, ax = ar.new_figure()
     rows = []
     for name, slope, ci, n, s in ar.plot_loglog_lines(ax, lines, x_col, metric):
-        rows.append({"strategy": name, "slope": slope, "ci95": ci, "points": n, f"{metric} at N max": s["mean"].iloc[-1]})
+        rows.append({"strategy": name, "log-log slope": slope, "slope 95 % CI ±": ci, "points": n, f"{metric.replace('_', ' ')} at the largest map": s["mean"].iloc[-1]})
         print(f"hypotheses: {name}: log-log slope {slope:.3f} ± {ci:.3f}")
     ax.set_xlabel("landmarks")
     ax.set_ylabel(metric.replace("_", " "))
