@@ -20,7 +20,7 @@ namespace arbor {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kData = std::string(ARBOR_SOURCE_DIR) + "/tests/data/";
+const std::string kShippedData = std::string(ARBOR_SOURCE_DIR) + "/tests/data/";
 
 void write_text(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
@@ -75,7 +75,7 @@ void standing_on_its_landmarks(const fs::path& dir) {
 std::function<void(const fs::path&)> dataset_edit(std::string dataset, std::string file, std::string pattern,
                                                   std::string replacement) {
   return [=](const fs::path& dir) {
-    fs::copy(kData + dataset, dir / dataset, fs::copy_options::recursive);
+    fs::copy(kShippedData + dataset, dir / dataset, fs::copy_options::recursive);
     mutate(dir / dataset / file, dir / dataset / file, pattern, replacement);
   };
 }
