@@ -366,6 +366,11 @@ def read_scenario_truth(path):
             pd.DataFrame(gps, columns=["t", "x", "y"]))
 
 
+def results_dir_of(path):
+    """The sweep directory of a results path (the directory itself, or the one holding a results file)."""
+    return path if os.path.isdir(path) else os.path.dirname(path)
+
+
 def main_for(make, description):
     """The command line every figure script shares: SCRIPT RESULTS_DIR [--out DIR]."""
     import argparse
@@ -373,7 +378,7 @@ def main_for(make, description):
     parser.add_argument("results", help="a sweep results directory (results.jsonl) or a results file")
     parser.add_argument("--out", help="where figures go (default: RESULTS/report)")
     args = parser.parse_args()
-    out = args.out or os.path.join(args.results if os.path.isdir(args.results) else os.path.dirname(args.results), "report")
+    out = args.out or os.path.join(results_dir_of(args.results), "report")
     df = load_results(args.results)
     sections = make(df, out, args.results)
     if not sections:

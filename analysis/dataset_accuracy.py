@@ -69,7 +69,7 @@ def make(df, out_dir, results_path=None):
     df = ar.ok_rows(df)
     if not ar.has_data(df, "dataset", "ate_rmse_m") or results_path is None:
         return []
-    results_dir = results_path if os.path.isdir(results_path) else os.path.dirname(results_path)
+    results_dir = ar.results_dir_of(results_path)
     df = with_run_details(df[df["dataset"].notna() & df["ate_rmse_m"].notna()], results_dir)
     sections = []
     for dataset, rows in df.groupby("dataset", sort=True):

@@ -64,8 +64,7 @@ def compare(df, dimension, metric):
 
 
 def value_text(dimension, value):
-    text = str(int(value)) if isinstance(value, float) and float(value).is_integer() else str(value)
-    return text if dimension in ar.METHOD else f"{ar.DIMENSIONS.get(dimension, (dimension, ''))[0]} = {text}"
+    return ar.label({dimension: value}, [dimension])
 
 
 def sentence(r):

@@ -39,7 +39,7 @@ def make(df, out_dir, results_path=None):
     df = ar.ok_rows(df)
     if results_path is None or not ar.has_data(df, "run_dir", "particles", "filter"):
         return []
-    results_dir = results_path if os.path.isdir(results_path) else os.path.dirname(results_path)
+    results_dir = ar.results_dir_of(results_path)
     runs = representative_runs(df[df["filter"] != "smoother"])
     groups = [c for c in ar.method_columns(runs) if c in runs.columns]
     shown = ar.varying(runs, groups) or ["filter"]
