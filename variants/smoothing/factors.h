@@ -86,46 +86,49 @@ class BetweenError : public WhitenedFactor<BetweenError, 3, Pose2, 3, 3> {
   }
 };
 
-// RangeBearingFactor: parameters pose[3], landmark[2]; residual 2; bearing error wrapped.
-class RangeBearingError : public WhitenedFactor<RangeBearingError, 2, Vec2, 3, 2> {
+// A factor between a pose[3] and a landmark[2] with a 2-vector measurement: the base hands the sensor model
+// the landmark's offset d = m - p in the world frame, and the model returns its error e(pose, d).
+template <class Derived>
+class PoseLandmarkFactor : public WhitenedFactor<Derived, 2, Vec2, 3, 2> {
  public:
-  using WhitenedFactor::WhitenedFactor;
+  using WhitenedFactor<Derived, 2, Vec2, 3, 2>::WhitenedFactor;
 
   template <typename T>
   bool operator()(const T* pose, const T* landmark, T* residual) const {
-    using std::atan2;
-    using std::sqrt;
-    const Vec2& z = measured_;
-    const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
-    const T q = dx * dx + dy * dy;
-    Eigen::Matrix<T, 2, 1> e;
-    if (q < T(kMinSquaredRange)) {
-      // At the sensor itself (a zero-range measurement starts its landmark there) the bearing and its
-      // derivative (0/0) are undefined, and one NaN Jacobian failed the whole solve: the factor holds the
-      // floored range alone there, as range_bearing_predict does for the filter.
-      e << sqrt(T(kMinSquaredRange)) - z.x(), T(0.0);
-    } else {
-      e << sqrt(q) - z.x(), wrap_angle_t(atan2(dy, dx) - pose[2] - z.y());
-    }
-    return whiten(e, residual);
+    const Eigen::Matrix<T, 2, 1> d(landmark[0] - pose[0], landmark[1] - pose[1]);
+    return this->whiten(static_cast<const Derived&>(*this).error(pose, d, this->measured_), residual);
   }
 };
 
-// PointFactor: parameters pose[3], landmark[2]; residual 2: R(th)^T (m - p) - p_robot.
-class PointError : public WhitenedFactor<PointError, 2, Vec2, 3, 2> {
+// RangeBearingFactor: z = (range, bearing); the bearing error is wrapped.
+class RangeBearingError : public PoseLandmarkFactor<RangeBearingError> {
  public:
-  using WhitenedFactor::WhitenedFactor;
+  using PoseLandmarkFactor::PoseLandmarkFactor;
 
   template <typename T>
-  bool operator()(const T* pose, const T* landmark, T* residual) const {
+  static Eigen::Matrix<T, 2, 1> error(const T* pose, const Eigen::Matrix<T, 2, 1>& d, const Vec2& z) {
+    using std::atan2;
+    using std::sqrt;
+    const T q = d.x() * d.x() + d.y() * d.y();
+    // At the sensor itself (a zero-range measurement starts its landmark there) the bearing and its
+    // derivative (0/0) are undefined, and one NaN Jacobian failed the whole solve: the factor holds the
+    // floored range alone there, as range_bearing_predict does for the filter.
+    if (q < T(kMinSquaredRange)) return {sqrt(T(kMinSquaredRange)) - z.x(), T(0.0)};
+    return {sqrt(q) - z.x(), wrap_angle_t(atan2(d.y(), d.x()) - pose[2] - z.y())};
+  }
+};
+
+// PointFactor: the landmark's position in the robot frame, R(th)^T (m - p), against p_robot.
+class PointError : public PoseLandmarkFactor<PointError> {
+ public:
+  using PoseLandmarkFactor::PoseLandmarkFactor;
+
+  template <typename T>
+  static Eigen::Matrix<T, 2, 1> error(const T* pose, const Eigen::Matrix<T, 2, 1>& d, const Vec2& p_robot) {
     using std::cos;
     using std::sin;
-    const Vec2& p_robot = measured_;
     const T c = cos(pose[2]), s = sin(pose[2]);
-    const T dx = landmark[0] - pose[0], dy = landmark[1] - pose[1];
-    Eigen::Matrix<T, 2, 1> e;
-    e << c * dx + s * dy - p_robot.x(), -s * dx + c * dy - p_robot.y();
-    return whiten(e, residual);
+    return {c * d.x() + s * d.y() - p_robot.x(), -s * d.x() + c * d.y() - p_robot.y()};
   }
 };
 
