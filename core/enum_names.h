@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 namespace arbor {
@@ -30,6 +31,25 @@ constexpr bool value_named(const EnumNames<E, N>& table, std::string_view name, 
       return true;
     }
   return false;
+}
+
+// An enum names its values by specialising this beside its declaration, so the names are read where the
+// enum is:  template <> struct NamesOf<WorldKind> { static constexpr EnumNames<WorldKind, 3> kTable{...}; };
+template <class E>
+struct NamesOf;
+
+template <class E>
+concept NamedEnum = std::is_enum_v<E> && requires { NamesOf<E>::kTable; };
+
+// The value's name as scenario files and the command line spell it ("?" for a value the table lacks).
+template <NamedEnum E>
+constexpr std::string_view to_string(E value) {
+  return name_of(NamesOf<E>::kTable, value);
+}
+// Sets *value to the value with this name; false (and *value untouched) for an unknown name.
+template <NamedEnum E>
+constexpr bool from_string(std::string_view name, E* value) {
+  return value_named(NamesOf<E>::kTable, name, value);
 }
 
 }  // namespace arbor

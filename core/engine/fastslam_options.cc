@@ -7,25 +7,7 @@
 
 #include <fmt/core.h>
 
-#include "core/enum_names.h"
-
 namespace arbor {
-
-namespace {
-
-// Each option's values with their command-line names (core/enum_names.h).
-constexpr EnumNames<FilterVersion, 2> kFilterNames{{{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}}};
-constexpr EnumNames<MotionSampling, 2> kSamplingNames{{{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
-constexpr EnumNames<Likelihood, 2> kLikelihoodNames{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
-
-}  // namespace
-
-std::string_view to_string(FilterVersion version) { return name_of(kFilterNames, version); }
-bool from_string(std::string_view name, FilterVersion* version) { return value_named(kFilterNames, name, version); }
-std::string_view to_string(MotionSampling sampling) { return name_of(kSamplingNames, sampling); }
-bool from_string(std::string_view name, MotionSampling* sampling) { return value_named(kSamplingNames, name, sampling); }
-std::string_view to_string(Likelihood likelihood) { return name_of(kLikelihoodNames, likelihood); }
-bool from_string(std::string_view name, Likelihood* likelihood) { return value_named(kLikelihoodNames, name, likelihood); }
 
 std::string FastSlamOptions::validate() const {
   if (particles < 1) return fmt::format("particles must be at least 1 (got {})", particles);

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "core/association/association_problem.h"
+#include "core/enum_names.h"
 
 namespace arbor {
 
@@ -18,12 +19,21 @@ enum class MotionSampling { kPerScan, kPerControl };
 // The measurement likelihood in the weights, the proposal and the landmark updates.
 enum class Likelihood { kGaussian, kStudentT };
 
-std::string_view to_string(FilterVersion version);
-bool from_string(std::string_view name, FilterVersion* version);
-std::string_view to_string(MotionSampling sampling);
-bool from_string(std::string_view name, MotionSampling* sampling);
-std::string_view to_string(Likelihood likelihood);
-bool from_string(std::string_view name, Likelihood* likelihood);
+// The command-line names of each option's values (core/enum_names.h).
+template <>
+struct NamesOf<FilterVersion> {
+  static constexpr EnumNames<FilterVersion, 2> kTable{
+      {{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}}};
+};
+template <>
+struct NamesOf<MotionSampling> {
+  static constexpr EnumNames<MotionSampling, 2> kTable{
+      {{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
+};
+template <>
+struct NamesOf<Likelihood> {
+  static constexpr EnumNames<Likelihood, 2> kTable{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
+};
 
 struct FastSlamOptions {
   FilterVersion version = FilterVersion::kFastSlam2;

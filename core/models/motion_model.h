@@ -5,8 +5,8 @@
 #define ARBOR_CORE_MODELS_MOTION_MODEL_H_
 
 #include <string>
-#include <string_view>
 
+#include "core/enum_names.h"
 #include "core/models/ackermann_model.h"
 #include "core/models/odometry_model.h"
 #include "core/models/velocity_model.h"
@@ -15,9 +15,13 @@ namespace arbor {
 
 enum class MotionModelKind { kOdometry, kVelocity, kAckermann };
 
-std::string_view to_string(MotionModelKind kind);
-// Returns false for an unknown name.
-bool from_string(std::string_view name, MotionModelKind* kind);
+// As scenario files and the command line name them (core/enum_names.h).
+template <>
+struct NamesOf<MotionModelKind> {
+  static constexpr EnumNames<MotionModelKind, 3> kTable{{{MotionModelKind::kOdometry, "odometry"},
+                                                        {MotionModelKind::kVelocity, "velocity"},
+                                                        {MotionModelKind::kAckermann, "ackermann"}}};
+};
 
 struct MotionModel {
   MotionModelKind kind = MotionModelKind::kOdometry;

@@ -5,17 +5,8 @@
 #include <cmath>
 
 #include "core/engine/rng.h"
-#include "core/enum_names.h"
 
 namespace arbor {
-
-namespace {
-constexpr EnumNames<WorldKind, 3> kWorldNames{
-    {{WorldKind::kUniform, "uniform"}, {WorldKind::kClustered, "clustered"}, {WorldKind::kRooms, "rooms"}}};
-}  // namespace
-
-std::string_view to_string(WorldKind kind) { return name_of(kWorldNames, kind); }
-bool from_string(std::string_view name, WorldKind* kind) { return value_named(kWorldNames, name, kind); }
 
 World make_world(const WorldOptions& o) {
   World w;

@@ -8,13 +8,17 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "core/types/scenario.h"
 
 namespace arbor {
 
 enum class WorldKind { kUniform, kClustered, kRooms };
-std::string_view to_string(WorldKind kind);
-bool from_string(std::string_view name, WorldKind* kind);
+template <>
+struct NamesOf<WorldKind> {
+  static constexpr EnumNames<WorldKind, 3> kTable{
+      {{WorldKind::kUniform, "uniform"}, {WorldKind::kClustered, "clustered"}, {WorldKind::kRooms, "rooms"}}};
+};
 
 struct WorldOptions {
   WorldKind kind = WorldKind::kUniform;

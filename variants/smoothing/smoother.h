@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "core/enum_names.h"
 #include "core/types/scenario.h"
 #include "variants/smoothing/factor_graph.h"
 
@@ -20,11 +21,18 @@ namespace arbor {
 enum class SmootherLoss { kNone, kHuber, kCauchy };
 enum class SmootherLinearSolver { kSparseSchur, kSparseNormalCholesky };
 
-std::string_view to_string(SmootherLoss loss);
-std::string_view to_string(SmootherLinearSolver solver);
-// CLI names: none|huber|cauchy and sparse-schur|sparse-normal-cholesky. False for an unknown name.
-bool from_string(std::string_view name, SmootherLoss* loss);
-bool from_string(std::string_view name, SmootherLinearSolver* solver);
+// The CLI's names (core/enum_names.h).
+template <>
+struct NamesOf<SmootherLoss> {
+  static constexpr EnumNames<SmootherLoss, 3> kTable{
+      {{SmootherLoss::kNone, "none"}, {SmootherLoss::kHuber, "huber"}, {SmootherLoss::kCauchy, "cauchy"}}};
+};
+template <>
+struct NamesOf<SmootherLinearSolver> {
+  static constexpr EnumNames<SmootherLinearSolver, 2> kTable{
+      {{SmootherLinearSolver::kSparseSchur, "sparse-schur"},
+       {SmootherLinearSolver::kSparseNormalCholesky, "sparse-normal-cholesky"}}};
+};
 
 struct SmootherOptions {
   // Poses: one per scan (and the last step), with the controls between composed into one motion factor.

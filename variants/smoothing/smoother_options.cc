@@ -3,22 +3,9 @@
 
 #include <fmt/core.h>
 
-#include "core/enum_names.h"
 #include "variants/smoothing/smoother.h"
 
 namespace arbor {
-
-namespace {
-constexpr EnumNames<SmootherLoss, 3> kLossNames{
-    {{SmootherLoss::kNone, "none"}, {SmootherLoss::kHuber, "huber"}, {SmootherLoss::kCauchy, "cauchy"}}};
-constexpr EnumNames<SmootherLinearSolver, 2> kSolverNames{{{SmootherLinearSolver::kSparseSchur, "sparse-schur"},
-                                                          {SmootherLinearSolver::kSparseNormalCholesky, "sparse-normal-cholesky"}}};
-}  // namespace
-
-std::string_view to_string(SmootherLoss loss) { return name_of(kLossNames, loss); }
-std::string_view to_string(SmootherLinearSolver solver) { return name_of(kSolverNames, solver); }
-bool from_string(std::string_view name, SmootherLoss* loss) { return value_named(kLossNames, name, loss); }
-bool from_string(std::string_view name, SmootherLinearSolver* solver) { return value_named(kSolverNames, name, solver); }
 
 bool SmootherOptions::validate(std::string* why) const {
   const auto fail = [&](std::string message) {
