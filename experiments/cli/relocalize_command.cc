@@ -18,6 +18,7 @@
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
 #include "experiments/options/option_checks.h"
+#include "experiments/sim/simulator.h"
 #include "experiments/sim/world.h"
 #include "variants/association/strategy_list.h"
 
@@ -104,12 +105,8 @@ int run_relocalize(const RelocalizeArgs& a) {
   wo.landmarks = a.landmarks;
   wo.seed = a.seed;
   const World world = make_world(wo);
-  SensorModel sensor;
-  sensor.max_range_m = 20.0;
-  sensor.min_range_m = 0.5;
-  sensor.fov_rad = kPi;
-  sensor.sigma_range_m = 0.1;
-  sensor.sigma_bearing_rad = 0.5 * kPi / 180.0;
+  // The simulator's sensor, so the relocalisation figures hold for the simulated runs' measurements.
+  const SensorModel sensor = SimulationOptions::default_sensor();
   const Mat2 R = sensor.R();
   const LandmarkGrid grid(world, sensor.max_range_m);
   std::mt19937_64 rng(a.seed * 7919 + 17);
