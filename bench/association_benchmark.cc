@@ -37,11 +37,12 @@ void run_case(const Case& c) {
     const S strategy(options);
     typename S::Scratch scratch;
     for (int seed = 1; seed <= c.seeds; ++seed) {
-      ProblemGeneratorOptions g;
-      g.landmarks = c.n;
-      g.observations = c.m;
-      g.clutter = c.clutter;
-      g.seed = static_cast<std::uint64_t>(seed);
+      const ProblemGeneratorOptions g{
+          .landmarks = c.n,
+          .observations = c.m,
+          .clutter = c.clutter,
+          .seed = static_cast<std::uint64_t>(seed),
+      };
       const GeneratedProblem gen = generate_association_problem(g);
       AssociationResult r;
       strategy.solve(gen.problem, scratch, r);  // warm the scratch buffers and caches

@@ -17,22 +17,6 @@
 namespace arbor {
 namespace {
 
-AssociationResult solve_jcbb(const AssociationProblem& p, AssociationOptions o = {}) {
-  Jcbb jcbb(o);
-  Jcbb::Scratch s;
-  AssociationResult r;
-  jcbb.solve(p, s, r);
-  return r;
-}
-
-AssociationResult solve_nn(const AssociationProblem& p, AssociationOptions o = {}) {
-  NearestNeighbor nn(o);
-  NearestNeighbor::Scratch s;
-  AssociationResult r;
-  nn.solve(p, s, r);
-  return r;
-}
-
 int pairings(const AssociationResult& r) {
   return static_cast<int>(std::count_if(r.pairing.begin(), r.pairing.end(), [](LandmarkId id) { return id >= 0; }));
 }
@@ -40,18 +24,19 @@ int pairings(const AssociationResult& r) {
 TEST(Jcbb, NeverReturnsAJointlyIncompatibleHypothesis) {
   int paired_total = 0;
   for (std::uint64_t seed = 1; seed <= 120; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 40 + static_cast<int>(seed % 5) * 30;
-    g.observations = 5 + static_cast<int>(seed % 4) * 4;
-    g.clutter = static_cast<int>(seed % 6);
-    g.pose_sigma = Vec3(0.4, 0.4, 0.08);  // strong pose coupling
-    g.density = 0.05;                     // crowded: many individually compatible pairs
+    ProblemGeneratorOptions g{
+        .landmarks = 40 + static_cast<int>(seed % 5) * 30,
+        .observations = 5 + static_cast<int>(seed % 4) * 4,
+        .clutter = static_cast<int>(seed % 6),
+        .seed = seed,
+        .density = 0.05,  // crowded: many individually compatible pairs
+        .pose_sigma = Vec3(0.4, 0.4, 0.08),  // strong pose coupling
+    };
     const GeneratedProblem gen = generate_association_problem(g);
     for (double prob : {0.95, 0.99}) {
       AssociationOptions o;
       o.gate_probability = prob;
-      const AssociationResult r = solve_jcbb(gen.problem, o);
+      const AssociationResult r = testing::solve_with<Jcbb>(gen.problem, o);
       ASSERT_EQ(r.pairing.size(), gen.problem.measurements.size());
       const auto test = association::joint_compatibility(gen.problem, r.pairing, prob);
       EXPECT_TRUE(test.well_formed) << "seed " << seed;
@@ -63,21 +48,22 @@ TEST(Jcbb, NeverReturnsAJointlyIncompatibleHypothesis) {
 }
 
 TEST(Jcbb, BudgetReturnsTheBestSoFarAndSaysSo) {
-  ProblemGeneratorOptions g;
-  g.seed = 7;
-  g.landmarks = 300;
-  g.observations = 25;
-  g.clutter = 10;
-  g.density = 0.08;
-  g.pose_sigma = Vec3(0.5, 0.5, 0.1);
+  ProblemGeneratorOptions g{
+      .landmarks = 300,
+      .observations = 25,
+      .clutter = 10,
+      .seed = 7,
+      .density = 0.08,
+      .pose_sigma = Vec3(0.5, 0.5, 0.1),
+  };
   const GeneratedProblem gen = generate_association_problem(g);
   AssociationOptions o;
   o.max_hypotheses = 30;
-  const AssociationResult r = solve_jcbb(gen.problem, o);
+  const AssociationResult r = testing::solve_with<Jcbb>(gen.problem, o);
   EXPECT_TRUE(r.stats.budget_exhausted);
   EXPECT_LE(r.stats.hypotheses, 30);
   EXPECT_TRUE(association::joint_compatibility(gen.problem, r.pairing, o.gate_probability).compatible);
-  const AssociationResult full = solve_jcbb(gen.problem);
+  const AssociationResult full = testing::solve_with<Jcbb>(gen.problem);
   EXPECT_FALSE(full.stats.budget_exhausted);
   EXPECT_GE(pairings(full), pairings(r));
 }
@@ -88,12 +74,13 @@ TEST(Jcbb, EqualsNearestNeighborWithZeroPoseCovarianceWhenUnambiguous) {
   const double gate = chi_square_quantile(0.99, 2);
   int checked = 0;
   for (std::uint64_t seed = 1; seed <= 300; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 60;
-    g.observations = 4 + static_cast<int>(seed % 10);
-    g.clutter = static_cast<int>(seed % 3);
-    g.pose_sigma = Vec3::Zero();
+    const ProblemGeneratorOptions g{
+        .landmarks = 60,
+        .observations = 4 + static_cast<int>(seed % 10),
+        .clutter = static_cast<int>(seed % 3),
+        .seed = seed,
+        .pose_sigma = Vec3::Zero(),
+    };
     const GeneratedProblem gen = generate_association_problem(g);
     const AssociationProblem& p = gen.problem;
     association::IndividualGating gating;
@@ -102,7 +89,7 @@ TEST(Jcbb, EqualsNearestNeighborWithZeroPoseCovarianceWhenUnambiguous) {
     bool unambiguous = true;
     for (std::size_t i = 0; i + 1 < gating.first.size(); ++i) unambiguous &= gating.first[i + 1] - gating.first[i] <= 1;
     if (!unambiguous) continue;
-    const AssociationResult nn = solve_nn(p);
+    const AssociationResult nn = testing::solve_with<NearestNeighbor>(p);
     // "That sum passes" must hold for every subset, not only for the whole: chi2(2k) grows more slowly than
     // the sum of the k largest individual distances can, so a prefix of NN's answer may fail its joint test
     // although the whole passes, and JCBB (which tests every prefix, Neira & Tardós 2001) then stops short.
@@ -120,7 +107,7 @@ TEST(Jcbb, EqualsNearestNeighborWithZeroPoseCovarianceWhenUnambiguous) {
     }
     if (!every_subset_passes) continue;
     ++checked;
-    const AssociationResult jcbb = solve_jcbb(p);
+    const AssociationResult jcbb = testing::solve_with<Jcbb>(p);
     EXPECT_EQ(jcbb.pairing, nn.pairing) << "seed " << seed;
   }
   EXPECT_GE(checked, 50);
@@ -144,11 +131,11 @@ TEST(Jcbb, PicksTheJointlyConsistentPairingWhereNearestNeighborDoesNot) {
   p.measurements.push_back(testing::make_measurement(r, -0.1));  // A seen 0.2 rad clockwise
   p.measurements.push_back(testing::make_measurement(r, -0.3));  // B seen 0.2 rad clockwise
 
-  const AssociationResult nn = solve_nn(p);
+  const AssociationResult nn = testing::solve_with<NearestNeighbor>(p);
   EXPECT_EQ(nn.pairing, (std::vector<LandmarkId>{9, 4}));
   EXPECT_FALSE(association::joint_compatibility(p, nn.pairing, 0.99).compatible);
 
-  const AssociationResult jcbb = solve_jcbb(p);
+  const AssociationResult jcbb = testing::solve_with<Jcbb>(p);
   EXPECT_EQ(jcbb.pairing, (std::vector<LandmarkId>{4, 9}));
   EXPECT_TRUE(association::joint_compatibility(p, jcbb.pairing, 0.99).compatible);
 }
@@ -156,15 +143,10 @@ TEST(Jcbb, PicksTheJointlyConsistentPairingWhereNearestNeighborDoesNot) {
 // Permuting the observations and the predictions (each prediction keeps its Jacobians) changes no answer.
 TEST(Jcbb, AnswerDoesNotDependOnInputOrder) {
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 80;
-    g.observations = 12;
-    g.clutter = 4;
-    g.density = 0.05;
+    const ProblemGeneratorOptions g{.landmarks = 80, .observations = 12, .clutter = 4, .seed = seed, .density = 0.05};
     const GeneratedProblem gen = generate_association_problem(g);
-    const AssociationResult jcbb = solve_jcbb(gen.problem);
-    const AssociationResult nn = solve_nn(gen.problem);
+    const AssociationResult jcbb = testing::solve_with<Jcbb>(gen.problem);
+    const AssociationResult nn = testing::solve_with<NearestNeighbor>(gen.problem);
     std::mt19937 rng(static_cast<unsigned>(seed));
     AssociationProblem shuffled = gen.problem;
     std::vector<int> perm(shuffled.measurements.size());
@@ -172,8 +154,8 @@ TEST(Jcbb, AnswerDoesNotDependOnInputOrder) {
     std::shuffle(perm.begin(), perm.end(), rng);
     for (std::size_t k = 0; k < perm.size(); ++k) shuffled.measurements[k] = gen.problem.measurements[perm[k]];
     std::shuffle(shuffled.candidates.begin(), shuffled.candidates.end(), rng);
-    const AssociationResult jcbb2 = solve_jcbb(shuffled);
-    const AssociationResult nn2 = solve_nn(shuffled);
+    const AssociationResult jcbb2 = testing::solve_with<Jcbb>(shuffled);
+    const AssociationResult nn2 = testing::solve_with<NearestNeighbor>(shuffled);
     for (std::size_t k = 0; k < perm.size(); ++k) {
       EXPECT_EQ(jcbb2.pairing[k], jcbb.pairing[perm[k]]) << "seed " << seed;
       EXPECT_EQ(nn2.pairing[k], nn.pairing[perm[k]]) << "seed " << seed;
@@ -183,9 +165,9 @@ TEST(Jcbb, AnswerDoesNotDependOnInputOrder) {
 
 TEST(Jcbb, EmptyProblemsAreFine) {
   AssociationProblem p;
-  EXPECT_TRUE(solve_jcbb(p).pairing.empty());
+  EXPECT_TRUE(testing::solve_with<Jcbb>(p).pairing.empty());
   p.measurements.push_back(testing::make_measurement(5.0, 0.3));
-  EXPECT_EQ(solve_jcbb(p).pairing, (std::vector<LandmarkId>{kNewLandmark}));
+  EXPECT_EQ(testing::solve_with<Jcbb>(p).pairing, (std::vector<LandmarkId>{kNewLandmark}));
 }
 
 }  // namespace

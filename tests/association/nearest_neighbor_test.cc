@@ -18,21 +18,12 @@ AssociationProblem two_landmarks() {
   return p;
 }
 
-template <class S>
-AssociationResult run(const AssociationProblem& p) {
-  S s{AssociationOptions{}};
-  typename S::Scratch scratch;
-  AssociationResult r;
-  s.solve(p, scratch, r);
-  return r;
-}
-
 TEST(NearestNeighbor, ExclusionGivesTheLandmarkToTheCloserMeasurement) {
   AssociationProblem p = two_landmarks();
   p.measurements.push_back(testing::make_measurement(10.15, 0.0));  // farther from landmark 3
   p.measurements.push_back(testing::make_measurement(10.02, 0.0));  // closer
-  EXPECT_EQ(run<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{kSpurious, 3}));
-  EXPECT_EQ(run<NearestNeighborNoExclusion>(p).pairing, (std::vector<LandmarkId>{3, 3}));
+  EXPECT_EQ(testing::solve_with<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{kSpurious, 3}));
+  EXPECT_EQ(testing::solve_with<NearestNeighborNoExclusion>(p).pairing, (std::vector<LandmarkId>{3, 3}));
 }
 
 TEST(NearestNeighbor, UnpairedRuleSeparatesNewFromAmbiguous) {
@@ -40,7 +31,7 @@ TEST(NearestNeighbor, UnpairedRuleSeparatesNewFromAmbiguous) {
   p.measurements.push_back(testing::make_measurement(10.0, 1.5708));  // on landmark 8
   p.measurements.push_back(testing::make_measurement(10.37, 0.0));    // ~3.3 sigma from landmark 3: ambiguous
   p.measurements.push_back(testing::make_measurement(20.0, -2.0));    // far from everything: new
-  EXPECT_EQ(run<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{8, kSpurious, kNewLandmark}));
+  EXPECT_EQ(testing::solve_with<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{8, kSpurious, kNewLandmark}));
 }
 
 TEST(NearestNeighbor, BearingDifferencesWrap) {
@@ -49,7 +40,7 @@ TEST(NearestNeighbor, BearingDifferencesWrap) {
   p.R = Vec2(0.1 * 0.1, 0.02 * 0.02).asDiagonal();
   p.candidates.push_back(testing::make_candidate(1, prior, Vec2(-10.0, 0.01), Mat2::Identity() * 1e-4, p.R));
   p.measurements.push_back(testing::make_measurement(10.0, -3.14));  // the same direction across +-pi
-  EXPECT_EQ(run<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{1}));
+  EXPECT_EQ(testing::solve_with<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{1}));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/association/test_problems.h"
 #include "core/io/input_error.h"
 #include "variants/association/jcbb.h"
 #include "variants/association/problem_generator.h"
@@ -24,20 +25,8 @@ std::string write_text(const std::string& name, const std::string& text) {
   return path;
 }
 
-AssociationResult solve(const AssociationProblem& p) {
-  Jcbb jcbb{AssociationOptions{}};
-  Jcbb::Scratch s;
-  AssociationResult r;
-  jcbb.solve(p, s, r);
-  return r;
-}
-
 TEST(ProblemIo, RoundTripGivesTheSameProblemAndAnswer) {
-  ProblemGeneratorOptions g;
-  g.landmarks = 30;
-  g.observations = 8;
-  g.clutter = 3;
-  g.seed = 11;
+  const ProblemGeneratorOptions g{.landmarks = 30, .observations = 8, .clutter = 3, .seed = 11};
   const GeneratedProblem gen = generate_association_problem(g);
   const std::string path = temp_path("roundtrip.txt");
   write_association_problem(path, gen.problem);
@@ -49,7 +38,7 @@ TEST(ProblemIo, RoundTripGivesTheSameProblemAndAnswer) {
   for (int a = 0; a < 30; ++a)
     for (int b = 0; b < 30; ++b)
       EXPECT_TRUE(back.innovation_covariance(a, b).isApprox(gen.problem.innovation_covariance(a, b), 1e-14));
-  EXPECT_EQ(solve(back).pairing, solve(gen.problem).pairing);
+  EXPECT_EQ(testing::solve_with<Jcbb>(back).pairing, testing::solve_with<Jcbb>(gen.problem).pairing);
   EXPECT_EQ(read_association_truth(path + ".truth", 11), gen.truth);
 }
 
@@ -67,7 +56,7 @@ TEST(ProblemIo, PredictionsAreSortedByIdWithTheirCovariance) {
   EXPECT_DOUBLE_EQ(p.innovation_covariance(0, 0)(0, 0), 3.0);
   EXPECT_DOUBLE_EQ(p.innovation_covariance(1, 1)(1, 1), 2.0);
   EXPECT_DOUBLE_EQ(p.innovation_covariance(0, 1)(0, 0), 0.5);
-  EXPECT_EQ(solve(p).pairing, (std::vector<LandmarkId>{9}));
+  EXPECT_EQ(testing::solve_with<Jcbb>(p).pairing, (std::vector<LandmarkId>{9}));
 }
 
 struct Malformed {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/association/test_problems.h"
 #include "variants/association/joint_compatibility.h"
 #include "variants/association/problem_generator.h"
 #include "variants/association/strategy_list.h"
@@ -28,24 +29,19 @@ class StrategyConformance : public ::testing::Test {
   // A generated problem that every strategy can solve: truth ids on the measurements and labels on the
   // candidates (known association reads them; the others do not), localities from nearest neighbours.
   static GeneratedProblem problem(std::uint64_t seed, int observations = 8, int clutter = 2) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 40;
-    g.observations = observations;
-    g.clutter = clutter;
-    g.density = 0.05;
+    const ProblemGeneratorOptions g{
+        .landmarks = 40,
+        .observations = observations,
+        .clutter = clutter,
+        .seed = seed,
+        .density = 0.05,
+    };
     GeneratedProblem gen = generate_association_problem(g);
     for (std::size_t k = 0; k < gen.truth.size(); ++k) gen.problem.measurements[k].truth_id = gen.truth[k];
     for (auto& c : gen.problem.candidates) c.truth_label = c.id;
     return gen;
   }
-  static AssociationResult solve(const AssociationProblem& p) {
-    const S strategy{AssociationOptions{}};
-    typename S::Scratch scratch;
-    AssociationResult r;
-    strategy.solve(p, scratch, r);
-    return r;
-  }
+  static AssociationResult solve(const AssociationProblem& p) { return testing::solve_with<S>(p); }
 };
 
 // Cases named after the strategy (gtest names allow letters, digits and underscores).

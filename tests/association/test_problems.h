@@ -28,6 +28,16 @@ inline AssociationMeasurement make_measurement(double r, double phi) {
   return z;
 }
 
+// One solve of p by strategy S with options o, from fresh scratch.
+template <class S>
+AssociationResult solve_with(const AssociationProblem& p, AssociationOptions o = {}) {
+  const S strategy(o);
+  typename S::Scratch scratch;
+  AssociationResult r;
+  strategy.solve(p, scratch, r);
+  return r;
+}
+
 }  // namespace arbor::testing
 
 #endif  // ARBOR_TESTS_ASSOCIATION_TEST_PROBLEMS_H_

@@ -16,15 +16,6 @@
 namespace arbor {
 namespace {
 
-template <class S>
-AssociationResult run(const AssociationProblem& p, AssociationOptions o = {}) {
-  const S s(o);
-  typename S::Scratch scratch;
-  AssociationResult r;
-  s.solve(p, scratch, r);
-  return r;
-}
-
 // Largest locality among the candidates, counting only ids that are candidates (the search's c).
 int max_locality(const AssociationProblem& p) {
   int c = 0;
@@ -46,15 +37,16 @@ TEST(LocalityTree, BoundFormula) {
 TEST(LocalityTree, NeverExceedsItsHypothesisBound) {
   int searched = 0;
   for (std::uint64_t seed = 1; seed <= 60; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 15 + static_cast<int>(seed % 4) * 15;
-    g.observations = 2 + static_cast<int>(seed % 5);
-    g.clutter = static_cast<int>(seed % 3);
-    g.locality = 1 + static_cast<int>(seed % 6);
-    g.density = 0.2;  // crowded: the constraints prune little, so the bound is what holds the count
+    ProblemGeneratorOptions g{
+        .landmarks = 15 + static_cast<int>(seed % 4) * 15,
+        .observations = 2 + static_cast<int>(seed % 5),
+        .clutter = static_cast<int>(seed % 3),
+        .seed = seed,
+        .density = 0.2,  // crowded: the constraints prune little, so the bound is what holds the count
+        .locality = 1 + static_cast<int>(seed % 6),
+    };
     const GeneratedProblem gen = generate_association_problem(g);
-    const AssociationResult r = run<LocalityTree>(gen.problem);
+    const AssociationResult r = testing::solve_with<LocalityTree>(gen.problem);
     const int n = static_cast<int>(gen.problem.candidates.size());
     const int m = static_cast<int>(gen.problem.measurements.size());
     const double bound = association::locality_hypothesis_bound(n, m, max_locality(gen.problem));
@@ -70,16 +62,17 @@ TEST(LocalityTree, NeverExceedsItsHypothesisBound) {
 // where an open feature still passes the constraints, which the classic unrestricted tree does not.)
 TEST(LocalityTree, WithFullLocalitiesEqualsTheUnrestrictedTree) {
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = LocalitySet::kCapacity + 1;
-    g.observations = 3 + static_cast<int>(seed % 4);
-    g.clutter = static_cast<int>(seed % 3);
-    g.locality = LocalitySet::kCapacity;
+    ProblemGeneratorOptions g{
+        .landmarks = LocalitySet::kCapacity + 1,
+        .observations = 3 + static_cast<int>(seed % 4),
+        .clutter = static_cast<int>(seed % 3),
+        .seed = seed,
+        .locality = LocalitySet::kCapacity,
+    };
     GeneratedProblem gen = generate_association_problem(g);
     ASSERT_EQ(max_locality(gen.problem), g.landmarks - 1);
-    const AssociationResult local = run<LocalityTree>(gen.problem);
-    const AssociationResult full = run<InterpretationTree>(gen.problem);
+    const AssociationResult local = testing::solve_with<LocalityTree>(gen.problem);
+    const AssociationResult full = testing::solve_with<InterpretationTree>(gen.problem);
     EXPECT_EQ(local.pairing, full.pairing) << "seed " << seed;
     EXPECT_LE(local.stats.hypotheses, full.stats.hypotheses) << "seed " << seed;
   }
@@ -89,12 +82,13 @@ TEST(LocalityTree, WithFullLocalitiesEqualsTheUnrestrictedTree) {
 TEST(LocalityTree, FindsTheTruePairingWithoutAPosePrior) {
   int good = 0, total = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 150;
-    g.observations = 8;
-    g.clutter = 2;
-    g.pose_sigma = Vec3(5.0, 5.0, 1.0);  // the prior is far off; the tree never reads it
+    ProblemGeneratorOptions g{
+        .landmarks = 150,
+        .observations = 8,
+        .clutter = 2,
+        .seed = seed,
+        .pose_sigma = Vec3(5.0, 5.0, 1.0),  // the prior is far off; the tree never reads it
+    };
     const GeneratedProblem gen = generate_association_problem(g);
     LocalityTree tree{AssociationOptions{}};
     LocalityTree::Scratch scratch;
@@ -113,19 +107,15 @@ TEST(LocalityTree, FindsTheTruePairingWithoutAPosePrior) {
 
 TEST(LocalityTree, AnswerDoesNotDependOnObservationOrder) {
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    ProblemGeneratorOptions g;
-    g.seed = seed;
-    g.landmarks = 100;
-    g.observations = 7;
-    g.clutter = 2;
+    const ProblemGeneratorOptions g{.landmarks = 100, .observations = 7, .clutter = 2, .seed = seed};
     const GeneratedProblem gen = generate_association_problem(g);
-    const AssociationResult r = run<LocalityTree>(gen.problem);
+    const AssociationResult r = testing::solve_with<LocalityTree>(gen.problem);
     AssociationProblem shuffled = gen.problem;
     std::vector<int> perm(shuffled.measurements.size());
     std::iota(perm.begin(), perm.end(), 0);
     std::shuffle(perm.begin(), perm.end(), std::mt19937(static_cast<unsigned>(seed)));
     for (std::size_t k = 0; k < perm.size(); ++k) shuffled.measurements[k] = gen.problem.measurements[perm[k]];
-    const AssociationResult r2 = run<LocalityTree>(shuffled);
+    const AssociationResult r2 = testing::solve_with<LocalityTree>(shuffled);
     for (std::size_t k = 0; k < perm.size(); ++k) EXPECT_EQ(r2.pairing[k], r.pairing[perm[k]]) << "seed " << seed;
     EXPECT_EQ(r2.stats.hypotheses, r.stats.hypotheses);
   }
@@ -144,9 +134,9 @@ TEST(LocalityTree, PairsASingleMeasurementWithThePrior) {
     p.candidates.push_back(testing::make_candidate(j, x, Vec2(4.0 + 3.0 * j, 2.0 + 2.0 * j), Mat2::Identity() * 0.01, R));
   const Vec2 z = p.candidates[3].z_hat + Vec2(0.05, 0.005);
   p.measurements.push_back(testing::make_measurement(z.x(), z.y()));
-  EXPECT_EQ(run<LocalityTree>(p).pairing, std::vector<LandmarkId>{3});
+  EXPECT_EQ(testing::solve_with<LocalityTree>(p).pairing, std::vector<LandmarkId>{3});
   p.measurements.front() = testing::make_measurement(z.x() + 5.0, z.y());
-  EXPECT_EQ(run<LocalityTree>(p).pairing, std::vector<LandmarkId>{kNewLandmark});
+  EXPECT_EQ(testing::solve_with<LocalityTree>(p).pairing, std::vector<LandmarkId>{kNewLandmark});
 }
 
 TEST(RigidAlignment, RecoversAKnownPose) {
