@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/io/input_error.h"
+
 namespace arbor::fuzz {
 
 // A directory of this process's own under the system temp dir, created on first use.
@@ -76,6 +78,18 @@ class DatasetCopy {
   std::vector<std::string> files_;
   std::vector<std::string> originals_;
 };
+
+// Runs f: true when the input was accepted, false when it was refused with an InputError (the reader doing its
+// job). Anything else escapes to libFuzzer, as a finding.
+template <class F>
+bool accepted(F&& f) {
+  try {
+    f();
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
 
 }  // namespace arbor::fuzz
 

@@ -3,7 +3,6 @@
 // every answer pairs each observation with a candidate or with nothing.
 #include <cstdlib>
 
-#include "core/io/input_error.h"
 #include "tests/fuzz/fuzz_support.h"
 #include "variants/association/problem_generator.h"
 #include "variants/association/problem_io.h"
@@ -12,11 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace arbor;
   AssociationProblem problem;
-  try {
-    problem = read_association_problem(fuzz::input_file(data, size, "input.problem"));
-  } catch (const InputError&) {
+  if (!fuzz::accepted([&] { problem = read_association_problem(fuzz::input_file(data, size, "input.problem")); }))
     return 0;
-  }
   AssociationOptions options;
   options.max_hypotheses = 2000;
   assign_nearest_localities(&problem, options.locality_capacity);

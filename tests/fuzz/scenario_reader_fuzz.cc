@@ -3,18 +3,13 @@
 // a file its reader rejects, docs/scenario_format.md).
 #include <cstdlib>
 
-#include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace arbor;
   Scenario scenario;
-  try {
-    scenario = read_scenario(fuzz::input_file(data, size, "input.scn"));
-  } catch (const InputError&) {
-    return 0;
-  }
+  if (!fuzz::accepted([&] { scenario = read_scenario(fuzz::input_file(data, size, "input.scn")); })) return 0;
   const std::string copy = (fuzz::scratch_dir() / "copy.scn").string();
   write_scenario(scenario, copy);  // throws (uncaught: a finding) if the reader refuses what it wrote
   if (read_scenario(copy).steps.size() != scenario.steps.size()) std::abort();
