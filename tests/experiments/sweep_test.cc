@@ -25,22 +25,10 @@ using testing_util::ScratchDir;
 using testing_util::write_text;
 
 // 12 tiny runs (a few milliseconds of filtering each; the process start dominates).
-constexpr const char* kTinySpec = R"([sweep]
-name = "tiny"
-metrics = ["ate_rmse_m", "landmarks", "steps"]
-[scenarios]
-world = "uniform"
-landmarks = 30
-steps = 25
-clutter = 0.5
-[grid]
-filter = "fastslam1"
-map = "naive"
-assoc = "known"
-particles = [3, 5, 8]
-seed = { from = 1, to = 4 }
-threads = 1
-)";
+const std::string& tiny_spec() {
+  static const std::string spec = read_text(std::string(ARBOR_SOURCE_DIR) + "/tests/data/sweeps/tiny.toml");
+  return spec;
+}
 constexpr std::size_t kTinyRuns = 12;
 
 // The identity of a row: its parameters and status (not timings, hosts or finish times).
@@ -76,7 +64,7 @@ class SweepEndToEnd : public ::testing::Test {
     binary_ = arbor_binary();
     if (binary_.empty()) return;
     scratch_ = new ScratchDir("sweep_e2e");
-    write_text(*scratch_ / "tiny.toml", kTinySpec);
+    write_text(*scratch_ / "tiny.toml", tiny_spec());
     reference_rc_ = run_to_end({binary_, "sweep", *scratch_ / "tiny.toml", "--out", *scratch_ / "reference", "--jobs", "2"},
                                *scratch_ / "reference.log");
   }
@@ -158,7 +146,7 @@ TEST_F(SweepEndToEnd, ThreeMergedShardsEqualTheUnshardedSweep) {
 
 TEST_F(SweepEndToEnd, MergeRefusesShardsOfDifferentSpecs) {
   ScratchDir dir("mismatch");
-  std::string other = kTinySpec;
+  std::string other = tiny_spec();
   other.replace(other.find("particles = [3, 5, 8]"), 21, "particles = [3]");
   write_text(dir / "other.toml", other);
   ASSERT_EQ(run_to_end({binary_, "sweep", dir / "other.toml", "--out", dir / "other", "--shard", "1/3"}, dir / "o.log"), 0);
@@ -186,12 +174,12 @@ TEST_F(SweepEndToEnd, ASecondProcessIntoTheSameOutIsRefused) {
 
 TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
   ScratchDir dir("malformed");
-  std::string bad = kTinySpec;
+  std::string bad = tiny_spec();
   bad.replace(bad.find("map = \"naive\""), 13, "map = \"splay\"");
   write_text(dir / "bad.toml", bad);
   EXPECT_EQ(run_to_end({binary_, "sweep", dir / "bad.toml", "--out", dir / "out"}, dir / "bad.log"), 2);
   const std::string log = read_text(dir / "bad.log");
-  EXPECT_NE(log.find("bad.toml:11: field 'grid.map'"), std::string::npos) << log;
+  EXPECT_NE(log.find("bad.toml:13: field 'grid.map'"), std::string::npos) << log;
   EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "something was written before validation finished";
 }
 

@@ -25,23 +25,8 @@ fi
 trap '"$source_dir/experiments/slurm/local_cluster.sh" stop "$cluster"' EXIT
 export SLURM_CONF=$cluster/slurm.conf
 
-cat > "$work/spec.toml" <<'SPEC'
-[sweep]
-name = "slurm-array-test"
-metrics = ["ate_rmse_m", "landmarks", "steps"]
-[scenarios]
-world = "uniform"
-landmarks = 30
-steps = 25
-clutter = 0.5
-[grid]
-filter = "fastslam1"
-map = "naive"
-assoc = ["known", "nn"]
-particles = [3, 8]
-seed = { from = 1, to = 3 }
-threads = 1
-SPEC
+# The sweep tests' 12 tiny runs: 3 array tasks of 4.
+cp "$source_dir/tests/data/sweeps/tiny.toml" "$work/spec.toml"
 # The script's own #SBATCH requests (4 CPUs, 8 GB) are for a cluster node; one CPU each fits this machine.
 ARBOR=$build/bin/arbor timeout 300 sbatch --wait --array=0-2 --cpus-per-task=1 --mem=200M \
   --chdir="$source_dir" --output="$work/task-%a.out" \
