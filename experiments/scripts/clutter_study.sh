@@ -10,16 +10,12 @@
 # Usage: experiments/scripts/clutter_study.sh OUT [ARBOR_BINARY]
 # Scale with SEEDS, CLUTTER, WORLDS, LOCALITY_SEEDS.
 set -euo pipefail
-out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
-arbor=$(realpath "${2:-build/bin/arbor}")
+source "$(dirname "$0")/study_setup.sh"  # $out, $arbor, the repository root as working directory, once
 seeds=${SEEDS:-"1 2 3 4 5"}
 clutter=${CLUTTER:-"0 2 5"}
 worlds=${WORLDS:-"clustered rooms"}
 locality_seeds=${LOCALITY_SEEDS:-$seeds}
-cd "$(dirname "$0")/../.."
 mkdir -p "$out/scenarios"
-
-source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
 
 for w in $worlds; do
   for c in $clutter; do

@@ -7,15 +7,11 @@
 # Usage: experiments/scripts/kidnap_study.sh OUT [ARBOR_BINARY]
 # Scale with SEEDS, WORLDS; RELOCALIZE_ARGS is added to the relocalising runs (e.g. "--relocalize-min-pairings 4").
 set -euo pipefail
-out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
-arbor=$(realpath "${2:-build/bin/arbor}")
+source "$(dirname "$0")/study_setup.sh"  # $out, $arbor, the repository root as working directory, once
 seeds=${SEEDS:-$(seq 1 20)}
 worlds=${WORLDS:-"uniform rooms"}
 read -r -a relocalize_args <<< "${RELOCALIZE_ARGS:-}"
-cd "$(dirname "$0")/../.."
 mkdir -p "$out/scenarios"
-
-source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
 
 for w in $worlds; do
   for s in $seeds; do

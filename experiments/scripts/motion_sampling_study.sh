@@ -11,16 +11,12 @@
 # Scale with SEEDS, KS, PARTICLES; UTIAS=DIR (default ../shared/datasets/utias_mrclam/MRCLAM_Dataset6; the
 # UTIAS part is skipped when DIR lacks robot 2).
 set -euo pipefail
-out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
-arbor=$(realpath "${2:-build/bin/arbor}")
+source "$(dirname "$0")/study_setup.sh"  # $out, $arbor, the repository root as working directory, once
 seeds=${SEEDS:-"1 2 3 4 5"}
 ks=${KS:-"1 10 50"}
 particles=${PARTICLES:-"10 100"}
-cd "$(dirname "$0")/../.."
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p "$out/scenarios"
-
-source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
 
 for k in $ks; do
   for s in $seeds; do

@@ -8,16 +8,12 @@
 # Usage: experiments/scripts/smoother_comparison.sh OUT [ARBOR_BINARY]
 # Scale with WORLDS (simulated world seeds), SEEDS (FastSLAM seeds on the real data), PARTICLES.
 set -euo pipefail
-out=$(realpath -m "${1:?usage: $0 OUT [ARBOR_BINARY]}")
-arbor=$(realpath "${2:-build/bin/arbor}")
+source "$(dirname "$0")/study_setup.sh"  # $out, $arbor, the repository root as working directory, once
 worlds=${WORLDS:-"1 2 3"}
 seeds=${SEEDS:-"1 2 3"}
 particles=${PARTICLES:-"10 100 1000"}
-cd "$(dirname "$0")/../.."  # the converters default to the data shipped in data/
 scenarios=out/scenarios     # shared with scripts/main.sh, which converts Victoria Park the same way
 mkdir -p "$out" "$scenarios"
-
-source experiments/scripts/run_once.sh  # after the cd: relative to the repository root
 
 # FastSLAM runs of FILTER x ASSOC x PARTICLES x SEEDS on SCENARIO into OUT/DATASET.
 fastslam() {
