@@ -33,13 +33,20 @@ def cell(values):
     return f"{mean:.3f} ± {ci:.3f} (n = {n})" if n >= 3 else " / ".join(f"{v:.3f}" for v in values)
 
 
+def study_runs(out, part, name_pattern, metrics):
+    """The runs under OUT/PART/<run>/result.json whose names match name_pattern, as a frame (also written to
+    OUT/motion_sampling_PART.csv when there are any)."""
+    df = read_study_runs(os.path.join(out, part, "*", "result.json"), name_pattern, metrics)
+    if not df.empty:
+        df.to_csv(os.path.join(out, f"motion_sampling_{part}.csv"), index=False)
+    return df
+
+
 def sim_section(out):
-    df = read_study_runs(os.path.join(out, "sim", "*", "result.json"),
-                   r"k(?P<k>\d+)-p(?P<particles>\d+)-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control)",
-                   ["ate_rmse_m", "ate_aligned_rmse_m", "nees_in_band_fraction", "nees_median", "wall_time_s"])
+    df = study_runs(out, "sim", r"k(?P<k>\d+)-p(?P<particles>\d+)-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control)",
+                    ["ate_rmse_m", "ate_aligned_rmse_m", "nees_in_band_fraction", "nees_median", "wall_time_s"])
     if df.empty:
         return df, ["No simulated runs found."]
-    df.to_csv(os.path.join(out, "motion_sampling_sim.csv"), index=False)
     rows = []
     for (k, m), g in df.groupby(["k", "particles"]):
         row = {"readings per scan K": k, "particles": m}
@@ -62,12 +69,11 @@ def sim_section(out):
 
 
 def utias_section(out):
-    df = read_study_runs(os.path.join(out, "utias", "*", "result.json"),
-                   r"r(?P<robot>\d)-(?P<method>fastslam1|fastslam2|smoother)(?:-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control))?",
-                   ["ate_rmse_m", "ate_aligned_rmse_m", "nees_in_band_fraction", "rejected_measurements", "wall_time_s"])
+    df = study_runs(out, "utias",
+                    r"r(?P<robot>\d)-(?P<method>fastslam1|fastslam2|smoother)(?:-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control))?",
+                    ["ate_rmse_m", "ate_aligned_rmse_m", "nees_in_band_fraction", "rejected_measurements", "wall_time_s"])
     if df.empty:
         return df, []
-    df.to_csv(os.path.join(out, "motion_sampling_utias.csv"), index=False)
     rows = []
     for robot, g in df.groupby("robot"):
         sm = g[g.method == "smoother"]
@@ -89,12 +95,10 @@ def utias_section(out):
 
 
 def victoria_park_section(out):
-    df = read_study_runs(os.path.join(out, "victoria_park", "*", "result.json"),
-                   r"(?P<assoc>jcbb|nn)-p(?P<particles>\d+)-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control)",
-                   ["ate_rmse_m", "landmarks", "wall_time_s"])
+    df = study_runs(out, "victoria_park", r"(?P<assoc>jcbb|nn)-p(?P<particles>\d+)-s(?P<seed>\d+)-(?P<sampling>per-scan|per-control)",
+                    ["ate_rmse_m", "landmarks", "wall_time_s"])
     if df.empty:
         return []
-    df.to_csv(os.path.join(out, "motion_sampling_victoria_park.csv"), index=False)
     rows = []
     for (m, s), g in df.groupby(["particles", "sampling"]):
         g = g.sort_values("seed")

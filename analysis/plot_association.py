@@ -24,6 +24,18 @@ def slope(x, y):
     return float(np.polyfit(np.log10(x[keep]), np.log10(y[keep]), 1)[0])
 
 
+def hypotheses_vs_n(ax, rows, title, with_tests=False):
+    """Median hypotheses per call against n, one log-log line per strategy, its fitted slope (and the time's)
+    printed under `title` and in the legend; with_tests adds the compatibility tests per call."""
+    for strategy, g in rows.groupby("strategy"):
+        g = g.sort_values("n")
+        s = slope(g.n, g.median_hypotheses)
+        print(f"{title}: {strategy}: hypotheses slope {s:.2f}, time slope {slope(g.n, g.median_s):.2f}")
+        ax.loglog(g.n, g.median_hypotheses, "o-", label=f"{strategy}{' hypotheses' if with_tests else ''} (slope {s:.2f})")
+        if with_tests:
+            ax.loglog(g.n, g.median_tests, "x--", alpha=0.6, label=f"{strategy} tests (slope {slope(g.n, g.median_tests):.2f})")
+
+
 def main():
     path = sys.argv[1]
     out = sys.argv[2] if len(sys.argv) > 2 else path.rsplit("/", 1)[0] + "/association.png"
@@ -31,12 +43,7 @@ def main():
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
 
     ax = axes[0]
-    for strategy, g in df[df.group == "n"].groupby("strategy"):
-        g = g.sort_values("n")
-        s = slope(g.n, g.median_hypotheses)
-        st = slope(g.n, g.median_s)
-        print(f"vs n (m=10): {strategy}: hypotheses slope {s:.2f}, time slope {st:.2f}")
-        ax.loglog(g.n, g.median_hypotheses, "o-", label=f"{strategy} (slope {s:.2f})")
+    hypotheses_vs_n(ax, df[df.group == "n"], "vs n (m=10)")
     ax.set_xlabel("map landmarks n (all candidates)")
     ax.set_ylabel("median hypotheses per call")
     ax.set_title("hypotheses vs n, m = 10 + 2 clutter")
@@ -56,13 +63,7 @@ def main():
     ax.legend(fontsize=7)
 
     ax = axes[2]
-    for strategy, g in df[df.group == "tree_n"].groupby("strategy"):
-        g = g.sort_values("n")
-        s = slope(g.n, g.median_hypotheses)
-        st = slope(g.n, g.median_s)
-        print(f"tree vs n (m=5): {strategy}: hypotheses slope {s:.2f}, time slope {st:.2f}")
-        ax.loglog(g.n, g.median_hypotheses, "o-", label=f"{strategy} hypotheses (slope {s:.2f})")
-        ax.loglog(g.n, g.median_tests, "x--", alpha=0.6, label=f"{strategy} tests (slope {slope(g.n, g.median_tests):.2f})")
+    hypotheses_vs_n(ax, df[df.group == "tree_n"], "tree vs n (m=5)", with_tests=True)
     ax.set_xlabel("map landmarks n")
     ax.set_title("locality vs unrestricted tree, m = 5 + 1")
     ax.legend(fontsize=7)
