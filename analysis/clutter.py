@@ -8,6 +8,9 @@ landmark the measurements observed, the confirmed landmarks without a true count
 `jcbb_no_existence` is JCBB with every new landmark confirmed at once (the existence ablation);
 `known_no_gate` is known association without its chi-square gate.
 
+Then JCBB against NN paired by seed (the same scenario and filter seed): the mean difference in F1 and in
+aligned ATE with its 95 % interval, and the seeds on which JCBB is ahead.
+
 Usage: /usr/bin/python3 analysis/clutter.py OUT
 Writes OUT/clutter.md, OUT/clutter.csv and OUT/clutter.png (F1, ATE ratio and map ratio against clutter).
 """
@@ -18,9 +21,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import markdown_table, read_study_runs  # noqa: E402
+from arbor_results import fmt_mean_ci, markdown_table, read_study_runs  # noqa: E402
 
 STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
 RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)"
@@ -36,6 +40,24 @@ def read_runs(out):
     df["clutter"] = df["clutter"].astype(float)
     df["map_ratio"] = df.landmarks / df.observed
     return df
+
+
+def paired(df, a, b, metrics=(("f1", "F1", True), ("ate_aligned_m", "aligned ATE (m)", False))):
+    """Strategy a against b per world and clutter rate, paired by seed: a − b as mean ± 95 % CI (the values
+    themselves below 3 pairs) and the number of seeds on which a is ahead (higher F1, lower ATE)."""
+    rows = []
+    for (world, clutter), g in df.groupby(["world", "clutter"]):
+        both = g[g.strategy.isin([a, b])].pivot(index="seed", columns="strategy").dropna()
+        if both.empty or a not in both.columns.get_level_values(1) or b not in both.columns.get_level_values(1):
+            continue
+        row = {"world": world, "clutter": clutter, "seeds": len(both)}
+        for metric, name, higher_is_better in metrics:
+            diff = both[metric][a] - both[metric][b]
+            row[f"{name}: {a} − {b}"] = fmt_mean_ci(diff, 2)
+            ahead = (diff > 0) if higher_is_better else (diff < 0)
+            row[f"{name}: {a} ahead on"] = f"{int(ahead.sum())} of {len(diff)}"
+        rows.append(row)
+    return rows
 
 
 def main(out):
@@ -63,6 +85,11 @@ def main(out):
                 "scenarios and seeds; map_ratio: confirmed landmarks per true landmark "
                 "observed; spurious: confirmed landmarks from clutter or duplicating another.\n\n")
         f.write(markdown_table(table) + "\n")
+        rows = paired(df, "jcbb", "nn")
+        if rows:
+            f.write("\n## JCBB against NN, paired by seed\n\nThe same scenario and filter seed for both; the mean "
+                    "difference with its 95 % interval (t distribution over the seeds' differences).\n\n")
+            f.write(markdown_table(pd.DataFrame(rows)) + "\n")
 
     worlds = sorted(df.world.unique())
     fig, axes = plt.subplots(3, len(worlds), figsize=(5.0 * len(worlds), 9.0), squeeze=False, sharex=True)

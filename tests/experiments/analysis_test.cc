@@ -113,12 +113,16 @@ TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
   write_run("rooms-c2-s2-known", 0.4, 100);
   write_run("rooms-c2-s1-jcbb", 0.3, 104);
   write_run("rooms-c2-s2-jcbb", 0.6, 106);
+  write_run("rooms-c2-s1-nn", 0.5, 100);
+  write_run("rooms-c2-s2-nn", 0.5, 100);
   write_run("not-a-run", 9.0, 1);
   ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   const std::string table = read_text(out / "clutter.md");
   EXPECT_NE(table.find("| rooms | 2 | known | 2 | 0.98 | 1 | 0.3 | 1 | 1 |"), std::string::npos) << table;
   EXPECT_NE(table.find("| rooms | 2 | jcbb | 2 | 0.98 | 1 | 0.45 | 1.5 | 1.05 |"), std::string::npos) << table;
+  // JCBB against NN paired by seed: -0.2 m on seed 1, +0.1 m on seed 2; two pairs list their values.
+  EXPECT_NE(table.find("| rooms | 2 | 2 | 0 / 0 | 0 of 2 | -0.2 / 0.1 | 1 of 2 |"), std::string::npos) << table;
   EXPECT_GT(std::filesystem::file_size(out / "clutter.png"), 1000u);
 }
 
