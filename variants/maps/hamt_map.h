@@ -86,6 +86,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   static_assert(Bits >= 1 && Bits <= 4, "the bitmap holds 16 slots");
   using Base::acquire;
   using Base::acquire_all;
+  using Base::acquire_all_but;
   using Base::leaves;
   using Base::release;
   using Base::root_;
@@ -118,7 +119,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   // Replaces the landmark with id lm.id, which must exist; copies the shared nodes of its path.
   void set(const Landmark& lm) {
     ARBOR_CHECK(root_ && fits(Hash{}(lm.id), root_shift_), "set of absent landmark {}", lm.id);
-    root_ = set_rec(root_, root_shift_, Hash{}(lm.id), lm);
+    root_ = set_rec(root_, true, root_shift_, Hash{}(lm.id), lm);
   }
 
   // Adds a landmark whose id is absent.
@@ -226,12 +227,17 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
     return c;
   }
 
-  static Ref set_rec(Ref r, int shift, std::uint32_t h, const Landmark& lm) {
+  // Writes lm below r; returns the new subtree root. `owned`: the caller's slot holds a counted reference to r,
+  // which this gives up. Otherwise the slot borrows r from the node it was copied from, which keeps r alive
+  // and its count unchanged, and r is left as it is. Only an owned, unshared node is written in place. A copy
+  // counts every child but the one on the path, which it borrows in turn: a path copy takes one reference per
+  // sibling and none per path node, and drops only the reference to the first node it copies, after the write.
+  static Ref set_rec(Ref r, bool owned, int shift, std::uint32_t h, const Landmark& lm) {
     if (r.is_leaf()) {
       ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
-      return Ref::leaf(internal::replace_leaf<Pool>(r.as_leaf(), lm));
+      return Ref::leaf(owned ? internal::replace_leaf<Pool>(r.as_leaf(), lm) : internal::new_leaf<Pool>(lm));
     }
-    Node* n = writable(r.as_inner<Node>());
+    Node* n = r.as_inner<Node>();
     int i = 0;
     if (shift < 0) {
       while (i < n->count && n->child[i].as_leaf()->id != lm.id) ++i;
@@ -241,9 +247,19 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
       ARBOR_CHECK((n->bitmap & bit) != 0, "set of absent landmark {}", lm.id);
       i = index(n->bitmap, bit);
     }
-    n->child[i] = set_rec(n->child[i], shift - kBits, h, lm);
-    n->box.grow(lm.mean);
-    return Ref::inner(n);
+    if (owned && internal::ref_unique(n->rc)) {
+      n->child[i] = set_rec(n->child[i], true, shift - kBits, h, lm);
+      n->box.grow(lm.mean);
+      return Ref::inner(n);
+    }
+    Node* c = new_node(n->count);
+    copy_header(c, n);
+    for (int k = 0; k < n->count; ++k) c->child[k] = n->child[k];
+    acquire_all_but(children(c), static_cast<std::size_t>(i));
+    c->child[i] = set_rec(n->child[i], false, shift - kBits, h, lm);
+    c->box.grow(lm.mean);
+    if (owned) release(Ref::inner(n));
+    return Ref::inner(c);
   }
 
   // A subtree at `shift` holding the two leaves a and b (distinct ids), references given.

@@ -102,7 +102,15 @@ class PersistentMapBase {
   }
   // One more reference to each of a copied node's children.
   static void acquire_all(std::span<const NodeRef> children) {
+    prefetch_counts(children);
     for (NodeRef c : children) acquire(c);
+  }
+  // The same for all but children[path]: the child a write is about to replace, which the copy borrows from
+  // the node it was copied from until then (see the back ends' set), so it never takes and drops a reference.
+  static void acquire_all_but(std::span<const NodeRef> children, std::size_t path) {
+    prefetch_counts(children);
+    for (std::size_t i = 0; i < children.size(); ++i)
+      if (i != path) acquire(children[i]);
   }
   // Drops one reference; frees every node whose count reaches zero, with an explicit stack (no recursion).
   static void release(NodeRef r) {
@@ -130,6 +138,16 @@ class PersistentMapBase {
   NodeRef root_;
 
  private:
+  // Each increment is a locked read-modify-write, which waits for its cache line before the next may start;
+  // the siblings of a path live all over the heap, so their counts are requested together first.
+  static void prefetch_counts(std::span<const NodeRef> children) {
+    for (NodeRef c : children) {
+      if (!c) continue;
+      if (c.is_leaf()) __builtin_prefetch(&c.as_leaf()->rc, 1);
+      else __builtin_prefetch(&c.as_inner<Inner>()->rc, 1);
+    }
+  }
+
   // From the root, depth first, children in walk order: on_leaf for every leaf reached, on_inner for every
   // inner node reached, whose children are visited only when it returns true. No recursion.
   template <class OnLeaf, class OnInner>

@@ -71,7 +71,7 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
   // Replaces the landmark with id lm.id, which must exist. Copies the shared part of its path.
   void set(const Landmark& lm) {
     ARBOR_CHECK(root_, "set of absent landmark {}", lm.id);
-    root_ = set_rec(root_, lm);
+    root_ = set_rec(root_, true, lm);
   }
 
   // Adds a landmark whose id is absent. O(log N), at most height+2 new nodes.
@@ -125,6 +125,13 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
   // n (whose reference the caller owns) made writable: itself when unshared, else a copy sharing its children.
   static Inner* writable(Inner* n) {
     if (internal::ref_unique(n->rc)) return n;
+    Inner* c = copy_of(n);
+    acquire_all(c->child);
+    release(Ref::inner(n));
+    return c;
+  }
+  // A fresh node with n's fields and child references, the references not yet counted.
+  static Inner* copy_of(const Inner* n) {
     Inner* c = new_inner();
     c->height = n->height;
     c->split = n->split;
@@ -132,21 +139,29 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
     c->box = n->box;
     c->child[0] = n->child[0];
     c->child[1] = n->child[1];
-    acquire_all(c->child);
-    release(Ref::inner(n));
     return c;
   }
 
-  static Ref set_rec(Ref r, const Landmark& lm) {
+  // Writes lm below r; returns the new subtree root. `owned` and the borrowed path child: as HamtMap::set_rec
+  // (a path copy takes one reference per level, for the sibling, where writable() took two and dropped one).
+  static Ref set_rec(Ref r, bool owned, const Landmark& lm) {
     if (r.is_leaf()) {
       ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
-      return Ref::leaf(internal::replace_leaf<Pool>(r.as_leaf(), lm));
+      return Ref::leaf(owned ? internal::replace_leaf<Pool>(r.as_leaf(), lm) : internal::new_leaf<Pool>(lm));
     }
-    Inner* n = writable(r.as_inner<Inner>());
-    Ref& c = n->child[lm.id <= n->split ? 0 : 1];
-    c = set_rec(c, lm);
-    n->box.grow(lm.mean);
-    return Ref::inner(n);
+    Inner* n = r.as_inner<Inner>();
+    const int side = lm.id <= n->split ? 0 : 1;
+    if (owned && internal::ref_unique(n->rc)) {
+      n->child[side] = set_rec(n->child[side], true, lm);
+      n->box.grow(lm.mean);
+      return Ref::inner(n);
+    }
+    Inner* c = copy_of(n);
+    acquire_all_but(c->child, static_cast<std::size_t>(side));
+    c->child[side] = set_rec(n->child[side], false, lm);
+    c->box.grow(lm.mean);
+    if (owned) release(Ref::inner(n));
+    return Ref::inner(c);
   }
 
   static Ref insert_rec(Ref r, const Landmark& lm) {
