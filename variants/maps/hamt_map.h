@@ -119,7 +119,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   // Replaces the landmark with id lm.id, which must exist; copies the shared nodes of its path.
   void set(const Landmark& lm) {
     ARBOR_CHECK(root_ && fits(Hash{}(lm.id), root_shift_), "set of absent landmark {}", lm.id);
-    root_ = set_rec(root_, true, root_shift_, Hash{}(lm.id), lm);
+    root_ = set_rec(root_, true, root_shift_, Hash{}(lm.id), lm, internal::FBox::around(lm.mean));
   }
 
   // Adds a landmark whose id is absent.
@@ -232,7 +232,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   // and its count unchanged, and r is left as it is. Only an owned, unshared node is written in place. A copy
   // counts every child but the one on the path, which it borrows in turn: a path copy takes one reference per
   // sibling and none per path node, and drops only the reference to the first node it copies, after the write.
-  static Ref set_rec(Ref r, bool owned, int shift, std::uint32_t h, const Landmark& lm) {
+  static Ref set_rec(Ref r, bool owned, int shift, std::uint32_t h, const Landmark& lm, const internal::FBox& at) {
     if (r.is_leaf()) {
       ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
       return Ref::leaf(owned ? internal::replace_leaf<Pool>(r.as_leaf(), lm) : internal::new_leaf<Pool>(lm));
@@ -248,16 +248,16 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
       i = index(n->bitmap, bit);
     }
     if (owned && internal::ref_unique(n->rc)) {
-      n->child[i] = set_rec(n->child[i], true, shift - kBits, h, lm);
-      n->box.grow(lm.mean);
+      n->child[i] = set_rec(n->child[i], true, shift - kBits, h, lm, at);
+      n->box.grow(at);
       return Ref::inner(n);
     }
     Node* c = new_node(n->count);
     copy_header(c, n);
     for (int k = 0; k < n->count; ++k) c->child[k] = n->child[k];
     acquire_all_but(children(c), static_cast<std::size_t>(i));
-    c->child[i] = set_rec(n->child[i], false, shift - kBits, h, lm);
-    c->box.grow(lm.mean);
+    c->child[i] = set_rec(n->child[i], false, shift - kBits, h, lm, at);
+    c->box.grow(at);
     if (owned) release(Ref::inner(n));
     return Ref::inner(c);
   }

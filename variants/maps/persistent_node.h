@@ -61,6 +61,13 @@ struct FBox {
     float f = static_cast<float>(v);
     return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
   }
+  // The box of one point: a write computes it once and grows every node of its path by it (the outward
+  // rounding calls nextafter, so it is not free).
+  static FBox around(const Vec2& p) {
+    FBox b;
+    b.grow(p);
+    return b;
+  }
   void grow(const Vec2& p) {
     const float lx = down(p.x()), ly = down(p.y()), hx = up(p.x()), hy = up(p.y());
     x0 = lx < x0 ? lx : x0;

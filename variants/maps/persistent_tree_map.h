@@ -71,7 +71,7 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
   // Replaces the landmark with id lm.id, which must exist. Copies the shared part of its path.
   void set(const Landmark& lm) {
     ARBOR_CHECK(root_, "set of absent landmark {}", lm.id);
-    root_ = set_rec(root_, true, lm);
+    root_ = set_rec(root_, true, lm, internal::FBox::around(lm.mean));
   }
 
   // Adds a landmark whose id is absent. O(log N), at most height+2 new nodes.
@@ -144,7 +144,7 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
 
   // Writes lm below r; returns the new subtree root. `owned` and the borrowed path child: as HamtMap::set_rec
   // (a path copy takes one reference per level, for the sibling, where writable() took two and dropped one).
-  static Ref set_rec(Ref r, bool owned, const Landmark& lm) {
+  static Ref set_rec(Ref r, bool owned, const Landmark& lm, const internal::FBox& at) {
     if (r.is_leaf()) {
       ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
       return Ref::leaf(owned ? internal::replace_leaf<Pool>(r.as_leaf(), lm) : internal::new_leaf<Pool>(lm));
@@ -152,14 +152,14 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
     Inner* n = r.as_inner<Inner>();
     const int side = lm.id <= n->split ? 0 : 1;
     if (owned && internal::ref_unique(n->rc)) {
-      n->child[side] = set_rec(n->child[side], true, lm);
-      n->box.grow(lm.mean);
+      n->child[side] = set_rec(n->child[side], true, lm, at);
+      n->box.grow(at);
       return Ref::inner(n);
     }
     Inner* c = copy_of(n);
     acquire_all_but(c->child, static_cast<std::size_t>(side));
-    c->child[side] = set_rec(n->child[side], false, lm);
-    c->box.grow(lm.mean);
+    c->child[side] = set_rec(n->child[side], false, lm, at);
+    c->box.grow(at);
     if (owned) release(Ref::inner(n));
     return Ref::inner(c);
   }
