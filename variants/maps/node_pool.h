@@ -48,8 +48,12 @@ class NodePool {
 // already holds one); the decrement is acq_rel so that the thread that frees a node sees every write made
 // by the threads that dropped it before (the usual shared_ptr argument).
 inline void ref_inc(std::atomic<std::uint32_t>& rc) { rc.fetch_add(1, std::memory_order_relaxed); }
-// Returns true when this was the last reference.
-inline bool ref_dec(std::atomic<std::uint32_t>& rc) { return rc.fetch_sub(1, std::memory_order_acq_rel) == 1; }
+// Returns true when this was the last reference. A count of 1 is ours alone (taking a reference needs one),
+// so nobody can change it: that case skips the locked decrement. The acquire load pairs with the release of
+// the other holders' decrements as fetch_sub's acquire would. (A freed write path is all such nodes.)
+inline bool ref_dec(std::atomic<std::uint32_t>& rc) {
+  return rc.load(std::memory_order_acquire) == 1 || rc.fetch_sub(1, std::memory_order_acq_rel) == 1;
+}
 // A node whose count is 1, reached through a path of such nodes from a map we own, is ours alone and may be
 // written in place. acquire: pairs with the release of the decrement that made it unique.
 inline bool ref_unique(const std::atomic<std::uint32_t>& rc) { return rc.load(std::memory_order_acquire) == 1; }
