@@ -25,6 +25,7 @@ import pandas as pd  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from arbor_results import fmt_mean_ci, markdown_table, read_study_runs  # noqa: E402
+from paired import difference  # noqa: E402
 
 STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
 RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)"
@@ -52,10 +53,9 @@ def paired(df, a, b, metrics=(("f1", "F1", True), ("ate_aligned_m", "aligned ATE
             continue
         row = {"world": world, "clutter": clutter, "seeds": len(both)}
         for metric, name, higher_is_better in metrics:
-            diff = both[metric][a] - both[metric][b]
-            row[f"{name}: {a} − {b}"] = fmt_mean_ci(diff, 2)
-            ahead = (diff > 0) if higher_is_better else (diff < 0)
-            row[f"{name}: {a} ahead on"] = f"{int(ahead.sum())} of {len(diff)}"
+            row[f"{name}: {a} − {b}"] = fmt_mean_ci(both[metric][a] - both[metric][b], 2)
+            d = difference(both[metric][a], both[metric][b], lower_is_better=not higher_is_better)
+            row[f"{name}: {a} ahead on"] = f"{d['a_better']} of {d['pairs']}"
         rows.append(row)
     return rows
 

@@ -37,6 +37,16 @@ def collapse_identical(df, column, metric):
     return df
 
 
+def difference(a, b, lower_is_better):
+    """a - b over paired values: the pairs, the mean and its 95 % CI half-width (nan below 3 pairs), and the
+    pairs where a is better and where b is."""
+    diff = (a - b).to_numpy(dtype=float)
+    mean, ci = ar.mean_ci(diff)
+    a_better = (diff < 0) if lower_is_better else (diff > 0)
+    b_better = (diff > 0) if lower_is_better else (diff < 0)
+    return dict(pairs=len(diff), mean=mean, ci=ci, a_better=int(a_better.sum()), b_better=int(b_better.sum()))
+
+
 def compare(df, dimension, metric):
     """Rows of the table for one dimension and metric: one per pair of its values that share runs."""
     keys = [c for c in run_keys(df) + ar.method_columns(df) if c in df.columns and c != dimension]
@@ -53,13 +63,9 @@ def compare(df, dimension, metric):
         both = wide[[a, b]].dropna()
         if len(both) == 0:
             continue
-        diff = (both[a] - both[b]).to_numpy(dtype=float)
-        mean, ci = ar.mean_ci(diff)
-        a_better = (diff < 0) if LOWER_IS_BETTER[metric] else (diff > 0)
-        b_better = (diff > 0) if LOWER_IS_BETTER[metric] else (diff < 0)
-        rows.append(dict(dimension=dimension, a=a, b=b, metric=metric, pairs=len(diff), mean=mean, ci=ci,
-                         a_better=int(a_better.sum()), b_better=int(b_better.sum()),
-                         significant=bool(ci == ci and abs(mean) > ci)))
+        d = difference(both[a], both[b], LOWER_IS_BETTER[metric])
+        rows.append(dict(dimension=dimension, a=a, b=b, metric=metric, **d,
+                         significant=bool(d["ci"] == d["ci"] and abs(d["mean"]) > d["ci"])))
     return rows
 
 
