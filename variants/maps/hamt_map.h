@@ -207,11 +207,16 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   // n (whose reference the caller owns) made writable at the same size.
   static Node* writable(Node* n) {
     if (internal::ref_unique(n->rc)) return n;
+    Node* c = copy_of(n);
+    acquire_all(children(c));
+    release(Ref::inner(n));
+    return c;
+  }
+  // A fresh node with n's header and child references, the references not yet counted.
+  static Node* copy_of(const Node* n) {
     Node* c = new_node(n->count);
     copy_header(c, n);
     for (int i = 0; i < n->count; ++i) c->child[i] = n->child[i];
-    acquire_all(children(c));
-    release(Ref::inner(n));
     return c;
   }
   // A copy of n (reference owned by the caller, given up) with one more slot, left empty at `at`. When n was
@@ -252,9 +257,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
       n->box.grow(at);
       return Ref::inner(n);
     }
-    Node* c = new_node(n->count);
-    copy_header(c, n);
-    for (int k = 0; k < n->count; ++k) c->child[k] = n->child[k];
+    Node* c = copy_of(n);
     acquire_all_but(children(c), static_cast<std::size_t>(i));
     c->child[i] = set_rec(n->child[i], false, shift - kBits, h, lm, at);
     c->box.grow(at);
