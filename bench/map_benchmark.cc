@@ -1,5 +1,6 @@
 // Map back end micro-benchmarks at N = 10^2..10^6 landmarks (ARBOR_BENCH_MAX_N=10000000: to 10^7): one set on a map shared with its parent, a
-// particle copy, a spatial query, and the memory of M = 100 particles that each updated a few landmarks.
+// particle copy, a spatial query, the memory of M = 100 particles that each updated a few landmarks, and (at
+// 10^5) the memory a filter's lineage of such particles holds after 1000 steps.
 // Run: build/bench/map_benchmark --benchmark_out=FILE.json (see analysis/plot_map_complexity.py).
 #include <cstdint>
 #include <memory>
@@ -130,6 +131,40 @@ void BM_Map_Particles(benchmark::State& state) {
   state.counters["bytes_per_landmark"] = static_cast<double>(ps.bytes) / static_cast<double>(n);
 }
 
+// A filter's lineage: every step M particles are resampled (copies of random parents) and each sets
+// kSetsPerStep landmarks in a window of 500 ids that moves 50 ids a step, as a robot's view does; 1000 steps.
+// held_bytes_per_particle is what the population holds above the parent (live bytes): unlike memory_stats it
+// includes what a node's base keeps alive (PersistentMapBase::derive), so back ends compare honestly.
+template <class M>
+void BM_Map_Lineage(benchmark::State& state) {
+  constexpr int kSteps = 1000, kSetsPerStep = 20, kWindow = 500, kStride = 50;
+  const std::int64_t n = state.range(0);
+  const M& parent = parent_map<M>(n);
+  const std::vector<Landmark> field = make_landmark_field(n);
+  double held = 0;
+  for (auto _ : state) {
+    std::mt19937_64 rng(5);
+    const std::int64_t before = live_bytes<M>();
+    std::vector<M> particles(kParticles, parent), next(kParticles);
+    for (int t = 0; t < kSteps; ++t) {
+      for (M& p : next) p = particles[rng() % kParticles];
+      std::swap(particles, next);
+      const std::int64_t window = (std::int64_t{t} * kStride) % (n - kWindow);
+      for (M& p : particles) {
+        for (int k = 0; k < kSetsPerStep; ++k) {
+          Landmark lm = field[window + static_cast<std::int64_t>(rng() % kWindow)];
+          lm.mean += Vec2(1e-3 * static_cast<double>(rng() % 100), 0.0);
+          p.set(lm);
+        }
+      }
+    }
+    next.clear();
+    held = static_cast<double>(live_bytes<M>() - before);
+    benchmark::ClobberMemory();
+  }
+  if (live_bytes<M>() >= 0) state.counters["held_bytes_per_particle"] = held / kParticles;
+}
+
 template <class M>
 void register_backend() {
   const std::string name(M::kName);
@@ -145,6 +180,7 @@ void register_backend() {
     add("BM_Map_Copy", BM_Map_Copy<M>);
     add("BM_Map_VisitNear", BM_Map_VisitNear<M>);
     if (name != "naive" || n <= 100000) add("BM_Map_Particles", BM_Map_Particles<M>)->Unit(benchmark::kMicrosecond);
+    if (n == 100000 && name != "naive") add("BM_Map_Lineage", BM_Map_Lineage<M>)->Unit(benchmark::kMillisecond)->Iterations(1);
   }
 }
 
