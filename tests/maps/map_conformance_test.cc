@@ -313,6 +313,26 @@ TYPED_TEST(MapConformance, MemoryStatsCountOwnedAndSharedNodes) {
   EXPECT_EQ(sb.bytes, a.memory_stats().bytes);
 }
 
+// A path copy borrows its original's other children (PersistentMapBase::derive) and so keeps the original
+// alive. Once the copy has rewritten everything it borrowed, that hold must end: after the source dies, the
+// nodes alive are exactly the ones the copy reaches.
+TYPED_TEST(MapConformance, ACopyThatRewroteEverythingHoldsNothingOfItsSource) {
+  if (!kCountsNodes<TypeParam>) GTEST_SKIP() << "the back end does not count nodes";
+  std::mt19937_64 rng(6);
+  const std::int64_t nodes0 = live_nodes<TypeParam>();
+  {
+    TypeParam a;
+    for (LandmarkId id = 0; id < 700; ++id) a.insert(random_landmark(id, rng));
+    TypeParam b = a;
+    b.set(random_landmark(350, rng));  // shared: a path copy that borrows
+    a = TypeParam();
+    for (LandmarkId id = 0; id < 700; ++id) b.set(random_landmark(id, rng));
+    EXPECT_EQ(static_cast<std::int64_t>(b.memory_stats().nodes), live_nodes<TypeParam>() - nodes0);
+    EXPECT_EQ(b.memory_stats().shared_nodes, 0u);
+  }
+  EXPECT_EQ(live_nodes<TypeParam>(), nodes0);
+}
+
 TEST(PersistentTreeMap, StaysAvlBalancedUnderSerialInsertsAndRandomErases) {
   std::mt19937_64 rng(2);
   PersistentTreeMap m;

@@ -62,9 +62,11 @@ struct alignas(16) HamtNode {
   std::uint32_t leaves = 0;  // landmarks below
   std::uint32_t inners = 0;  // inner and collision nodes below, this one included
   FBox box;
+  HamtNode* base = nullptr;    // the node whose children this one borrows (PersistentMapBase::derive)
+  std::uint32_t borrowed = 0;  // bit i: child i is base's, not counted here
   NodeRef child[];  // flexible array member (a GNU/Clang extension in C++)
 };
-static_assert(sizeof(HamtNode) == 32);
+static_assert(sizeof(HamtNode) == 48);
 }  // namespace internal
 
 // The trie consumes the 32-bit hash 4 bits per level from the most significant end, so that with the
@@ -73,11 +75,11 @@ static_assert(sizeof(HamtNode) == 32);
 // ceil(log16 N) levels, not 8. An entry lives at the shallowest level where its hash prefix is unique
 // (Bagwell); two entries whose 32 hash bits are all equal share a collision node, a list sorted by id.
 //
-// A node is one allocation: a 32-byte header (count, bitmap, leaf and inner-node counts below it, bounding
-// box of the means below it) and a packed array of popcount(bitmap) child references.
+// A node is one allocation: a 48-byte header (count, bitmap, leaf and inner-node counts below it, bounding
+// box of the means below it, the borrowing fields) and a packed array of popcount(bitmap) child references.
 //
 // Complexity (N landmarks, k results, L = levels ~ log16 N): find O(L); set O(L) with L node copies
-// when shared (at N = 10^6 and the identity hash: 5 nodes of <= 160 B and one 96 B leaf); insert and erase
+// when shared (at N = 10^6 and the identity hash: 5 nodes of <= 176 B and one 96 B leaf); insert and erase
 // O(L), each level reallocated at its new size; copy O(1); visit_near O(L + k) nodes for spatially coherent
 // ids (identity hash), plus a sort of the k results for hashes that do not preserve order.
 template <class Hash = HamtIdentityHash, int Bits = 4>
@@ -86,8 +88,10 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   static_assert(Bits >= 1 && Bits <= 4, "the bitmap holds 16 slots");
   using Base::acquire;
   using Base::acquire_all;
-  using Base::acquire_all_but;
+  using Base::borrows;
+  using Base::derive;
   using Base::leaves;
+  using Base::own_all;
   using Base::release;
   using Base::root_;
 
@@ -206,7 +210,10 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   }
   // n (whose reference the caller owns) made writable at the same size.
   static Node* writable(Node* n) {
-    if (internal::ref_unique(n->rc)) return n;
+    if (internal::ref_unique(n->rc)) {
+      own_all(n);
+      return n;
+    }
     Node* c = copy_of(n);
     acquire_all(children(c));
     release(Ref::inner(n));
@@ -225,6 +232,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
     Node* c = new_node(n->count + 1);
     copy_header(c, n);
     const bool unique = internal::ref_unique(n->rc);
+    if (unique) own_all(n);
     for (int i = 0; i < n->count; ++i) c->child[i < at ? i : i + 1] = n->child[i];
     if (!unique) acquire_all(children(n));
     if (unique) delete_inner(n);
@@ -233,10 +241,11 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   }
 
   // Writes lm below r; returns the new subtree root. `owned`: the caller's slot holds a counted reference to r,
-  // which this gives up. Otherwise the slot borrows r from the node it was copied from, which keeps r alive
-  // and its count unchanged, and r is left as it is. Only an owned, unshared node is written in place. A copy
-  // counts every child but the one on the path, which it borrows in turn: a path copy takes one reference per
-  // sibling and none per path node, and drops only the reference to the first node it copies, after the write.
+  // which this gives up. Otherwise the slot borrows r (from the node it was copied from, or from its base),
+  // which keeps r alive and its count unchanged, and r is left as it is. Only an owned, unshared node is
+  // written in place. A copy borrows every child but the one on the path from its original (derive): a path
+  // copy takes one reference per level, to a node it has just read, and drops only the reference to the
+  // first node it copies, after the write.
   static Ref set_rec(Ref r, bool owned, int shift, std::uint32_t h, const Landmark& lm, const internal::FBox& at) {
     if (r.is_leaf()) {
       ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
@@ -253,12 +262,14 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
       i = index(n->bitmap, bit);
     }
     if (owned && internal::ref_unique(n->rc)) {
-      n->child[i] = set_rec(n->child[i], true, shift - kBits, h, lm, at);
+      const bool borrowed = borrows(n, i);
+      n->child[i] = set_rec(n->child[i], !borrowed, shift - kBits, h, lm, at);
+      if (borrowed) Base::stop_borrowing(n, i);
       n->box.grow(at);
       return Ref::inner(n);
     }
     Node* c = copy_of(n);
-    acquire_all_but(children(c), static_cast<std::size_t>(i));
+    derive(c, n, static_cast<std::size_t>(i));
     c->child[i] = set_rec(n->child[i], false, shift - kBits, h, lm, at);
     c->box.grow(at);
     if (owned) release(Ref::inner(n));
@@ -385,6 +396,7 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
     Node* c = new_node(n->count - 1);
     copy_header(c, n);
     const bool unique = internal::ref_unique(n->rc);
+    if (unique) own_all(n);
     for (int i = 0, j = 0; i < n->count; ++i) {
       if (i == at) continue;
       c->child[j++] = n->child[i];

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -29,7 +30,8 @@ struct SubtreeSize {
 };
 
 // What a back end tells the scaffold, as static members (private; it befriends its base): its Inner node
-// has an atomic `rc`, a `leaves` count and an FBox `box` of the means below it, and it gives
+// has an atomic `rc`, a `leaves` count, an FBox `box` of the means below it, optionally the borrowing
+// fields `Inner* base` and `std::uint32_t borrowed` (see derive), and it gives
 //   children(n)        std::span<const NodeRef>: n's child references in walk order
 //   delete_inner(n)    frees n itself (its children were already let go)
 //   inner_bytes(n)     bytes of n itself
@@ -71,20 +73,39 @@ class PersistentMapBase {
     walk(&box, f);
   }
 
-  // Nodes and bytes reachable; a node counts as shared if it, or a node above it, has count > 1 (so another
-  // map reaches it). Only the unshared part is walked: a shared subtree is summed from its root's counts.
+  // Nodes and bytes reachable through child references (the map's own structure; an unshared node's base,
+  // see derive, counts too, as the one node it is); a node counts as shared if it, or a node above it, has
+  // count > 1 (so another map reaches it), and a borrowed child is shared when its lender is. Only the
+  // unshared part is walked: a shared subtree is summed from its root's counts.
   MapMemoryStats memory_stats() const {
     MapMemoryStats s;
-    depth_first([&](const LeafNode* leaf) { s.add(1, sizeof(LeafNode), leaf->rc.load(std::memory_order_relaxed) > 1); },
-                [&](const Inner* n) {
-                  if (n->rc.load(std::memory_order_relaxed) > 1) {
-                    const SubtreeSize sub = Derived::subtree_size(n);
-                    s.add(sub.nodes, sub.bytes, true);
-                    return false;
-                  }
-                  s.add(1, Derived::inner_bytes(n), false);
-                  return true;
-                });
+    if (!root_) return s;
+    struct Item {
+      NodeRef r;
+      bool shared;  // through a shared lender
+    };
+    std::vector<Item> stack{{root_, false}};
+    while (!stack.empty()) {
+      const Item it = stack.back();
+      stack.pop_back();
+      if (it.r.is_leaf()) {
+        s.add(1, sizeof(LeafNode), it.shared || it.r.as_leaf()->rc.load(std::memory_order_relaxed) > 1);
+        continue;
+      }
+      const Inner* n = it.r.template as_inner<Inner>();
+      if (it.shared || n->rc.load(std::memory_order_relaxed) > 1) {
+        const SubtreeSize sub = Derived::subtree_size(n);
+        s.add(sub.nodes, sub.bytes, true);
+        continue;
+      }
+      s.add(1, Derived::inner_bytes(n), false);
+      const Inner* lender = base_of(n);
+      const bool lender_shared = lender != nullptr && lender->rc.load(std::memory_order_relaxed) > 1;
+      if (lender != nullptr && !lender_shared) s.add(1, Derived::inner_bytes(lender), false);
+      const std::span<const NodeRef> kids = Derived::children(n);
+      for (std::size_t i = 0; i < kids.size(); ++i)
+        if (kids[i]) stack.push_back({kids[i], lender_shared && borrows(n, i)});
+    }
     return s;
   }
 
@@ -112,7 +133,74 @@ class PersistentMapBase {
     for (std::size_t i = 0; i < children.size(); ++i)
       if (i != path) acquire(children[i]);
   }
+  // Whether the back end's nodes borrow (they have the fields); one that does not gets the classic path copy.
+  static constexpr bool kBorrows = requires(Inner* n) {
+    n->base;
+    n->borrowed;
+  };
+  // Borrowing. A path copy c of a node n needs every child of n but the one the write replaces. Counting
+  // each of them (the classic path copy) is a locked increment on a cache line of its own, all over the heap:
+  // at 10^6 landmarks a 16-way trie's set took ~75 of them, and freeing the copy as many decrements, which
+  // was most of its time. Instead c takes one reference to n, its `base`, which keeps n's children alive, and
+  // marks them `borrowed` (bit i: child i is held by base, not counted by c). n was just read, so its count
+  // is in cache. The base is always a node that borrows nothing, so bases never chain: copying a borrowing
+  // node borrows from its base and counts only the few children it had replaced.
+  //
+  // The price is memory: a base lives as long as a node borrows from it, and with it the children its
+  // borrowers replaced (old leaves, mostly), until the borrower has replaced every borrowed child itself
+  // (stop_borrowing) or dies (BM_Map_Lineage in bench/map_benchmark.cc measures it). A back end whose nodes
+  // lack the fields gets the classic copy here.
+  //
+  // c, a fresh copy of n's child references (not yet counted), is made to share all of them but
+  // children[path], which the caller is about to replace with a reference of c's own.
+  static void derive(Inner* c, const Inner* n, std::size_t path) {
+    const std::span<const NodeRef> kids = Derived::children(c);
+    if constexpr (kBorrows) {
+      if (kids.size() <= 32) {  // (a wider collision node counts its children, as a classic path copy does)
+        const std::uint32_t all = kids.size() == 32 ? ~0u : (1u << kids.size()) - 1;
+        const std::uint32_t from_base = (n->base != nullptr ? n->borrowed : all) & ~(1u << path);
+        for (std::uint32_t own = all & ~from_base & ~(1u << path); own != 0; own &= own - 1)
+          acquire(kids[std::countr_zero(own)]);
+        if (from_base == 0) return;
+        Inner* base = n->base != nullptr ? n->base : const_cast<Inner*>(n);
+        ref_inc(base->rc);
+        c->base = base;
+        c->borrowed = from_base;
+        return;
+      }
+    }
+    acquire_all_but(kids, path);
+  }
+  static bool borrows(const Inner* n, std::size_t i) {
+    if constexpr (kBorrows) return i < 32 && ((n->borrowed >> i) & 1u) != 0;
+    else return false;
+  }
+  static Inner* base_of(const Inner* n) {
+    if constexpr (kBorrows) return n->base;
+    else return nullptr;
+  }
+  // n (ours alone) has just replaced its borrowed child i with a reference of its own; once it borrows
+  // nothing it lets its base go, and with it whatever only the base still held.
+  static void stop_borrowing(Inner* n, std::size_t i) {
+    if constexpr (kBorrows) {
+      n->borrowed &= ~(1u << i);
+      if (n->borrowed == 0) release(NodeRef::inner(std::exchange(n->base, nullptr)));
+    }
+  }
+  // n (ours alone) is about to be restructured, which moves its references around: it counts what it
+  // borrowed and lets its base go.
+  static void own_all(Inner* n) {
+    if constexpr (kBorrows) {
+      if (n->base == nullptr) return;
+      const std::span<const NodeRef> kids = Derived::children(n);
+      for (std::uint32_t b = n->borrowed; b != 0; b &= b - 1) acquire(kids[std::countr_zero(b)]);
+      n->borrowed = 0;
+      release(NodeRef::inner(std::exchange(n->base, nullptr)));
+    }
+  }
+
   // Drops one reference; frees every node whose count reaches zero, with an explicit stack (no recursion).
+  // A freed node drops its own children's references and its base's, not the ones it borrowed.
   static void release(NodeRef r) {
     if (!r) return;
     if (r.is_leaf()) {
@@ -121,16 +209,21 @@ class PersistentMapBase {
     }
     Inner* n = r.as_inner<Inner>();
     if (!ref_dec(n->rc)) return;
-    std::array<Inner*, Derived::kStackSize> stack;
+    // A base sits at its borrower's level and borrows nothing, so a chain of frees descends a level at least
+    // every second node: twice the walk's depth, one more slot per node for its base.
+    std::array<Inner*, 3 * Derived::kStackSize> stack;
     int top = 0;
     stack[top++] = n;
     while (top > 0) {
       Inner* cur = stack[--top];
-      for (NodeRef c : Derived::children(cur)) {
-        if (!c) continue;  // a slot emptied just before the node is dropped
+      const std::span<const NodeRef> kids = Derived::children(cur);
+      for (std::size_t i = 0; i < kids.size(); ++i) {
+        const NodeRef c = kids[i];
+        if (!c || borrows(cur, i)) continue;  // empty: a slot cleared just before the node is dropped
         if (c.is_leaf()) release_leaf<Pool>(c.as_leaf());
         else if (ref_dec(c.as_inner<Inner>()->rc)) stack[top++] = c.as_inner<Inner>();
       }
+      if (Inner* base = base_of(cur); base != nullptr && ref_dec(base->rc)) stack[top++] = base;
       Derived::delete_inner(cur);
     }
   }
