@@ -88,8 +88,6 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
   static_assert(Bits >= 1 && Bits <= 4, "the bitmap holds 16 slots");
   using Base::acquire;
   using Base::acquire_all;
-  using Base::borrows;
-  using Base::derive;
   using Base::leaves;
   using Base::own_all;
   using Base::release;
@@ -240,17 +238,10 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
     return c;
   }
 
-  // Writes lm below r; returns the new subtree root. `owned`: the caller's slot holds a counted reference to r,
-  // which this gives up. Otherwise the slot borrows r (from the node it was copied from, or from its base),
-  // which keeps r alive and its count unchanged, and r is left as it is. Only an owned, unshared node is
-  // written in place. A copy borrows every child but the one on the path from its original (derive): a path
-  // copy takes one reference per level, to a node it has just read, and drops only the reference to the
-  // first node it copies, after the write.
+  // Writes lm below r; returns the new subtree root. `owned`, the borrowing and the copy: PersistentMapBase::
+  // set_inner, which takes one reference per level, to a node it has just read.
   static Ref set_rec(Ref r, bool owned, int shift, std::uint32_t h, const Landmark& lm, const internal::FBox& at) {
-    if (r.is_leaf()) {
-      ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
-      return Ref::leaf(owned ? internal::replace_leaf<Pool>(r.as_leaf(), lm) : internal::new_leaf<Pool>(lm));
-    }
+    if (r.is_leaf()) return Base::set_leaf(r, owned, lm);
     Node* n = r.as_inner<Node>();
     int i = 0;
     if (shift < 0) {
@@ -261,19 +252,8 @@ class HamtMap : public internal::PersistentMapBase<HamtMap<Hash, Bits>, internal
       ARBOR_CHECK((n->bitmap & bit) != 0, "set of absent landmark {}", lm.id);
       i = index(n->bitmap, bit);
     }
-    if (owned && internal::ref_unique(n->rc)) {
-      const bool borrowed = borrows(n, i);
-      n->child[i] = set_rec(n->child[i], !borrowed, shift - kBits, h, lm, at);
-      if (borrowed) Base::stop_borrowing(n, i);
-      n->box.grow(at);
-      return Ref::inner(n);
-    }
-    Node* c = copy_of(n);
-    derive(c, n, static_cast<std::size_t>(i));
-    c->child[i] = set_rec(n->child[i], false, shift - kBits, h, lm, at);
-    c->box.grow(at);
-    if (owned) release(Ref::inner(n));
-    return Ref::inner(c);
+    return Base::set_inner(n, owned, static_cast<std::size_t>(i), at,
+                           [&](Ref child, bool own) { return set_rec(child, own, shift - kBits, h, lm, at); });
   }
 
   // A subtree at `shift` holding the two leaves a and b (distinct ids), references given.

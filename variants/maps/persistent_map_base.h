@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/check.h"
 #include "core/engine/map_concept.h"
 #include "core/types/box2.h"
 #include "core/types/landmark.h"
@@ -32,7 +33,8 @@ struct SubtreeSize {
 // What a back end tells the scaffold, as static members (private; it befriends its base): its Inner node
 // has an atomic `rc`, a `leaves` count, an FBox `box` of the means below it, optionally the borrowing
 // fields `Inner* base` and `std::uint32_t borrowed` (see derive), and it gives
-//   children(n)        std::span<const NodeRef>: n's child references in walk order
+//   children(n)        std::span<const NodeRef>: n's child references in walk order (n->child[i] is slot i)
+//   copy_of(n)         a fresh node with n's fields and child references, the references not yet counted
 //   delete_inner(n)    frees n itself (its children were already let go)
 //   inner_bytes(n)     bytes of n itself
 //   subtree_size(n)    SubtreeSize of n's whole subtree, from n's own counts (a shared part's memory_stats)
@@ -197,6 +199,32 @@ class PersistentMapBase {
       n->borrowed = 0;
       release(NodeRef::inner(std::exchange(n->base, nullptr)));
     }
+  }
+
+  // The two ends of a set's walk down, the same in every back end. `owned`: the caller's slot holds a counted
+  // reference to r, which this gives up; otherwise the slot borrows r (from the node it was copied from, or
+  // from that node's base), which keeps r alive, and r is left as it is. Only an owned, unshared node is
+  // written in place. A copy borrows every child but the one on the path (derive), which it fills with what
+  // `down(child, owned)` returns; it drops the reference to the node it copied only after the write.
+  template <class Down>
+  static NodeRef set_inner(Inner* n, bool owned, std::size_t i, const FBox& at, Down&& down) {
+    if (owned && ref_unique(n->rc)) {
+      const bool borrowed = borrows(n, i);
+      n->child[i] = down(n->child[i], !borrowed);
+      if (borrowed) stop_borrowing(n, i);
+      n->box.grow(at);
+      return NodeRef::inner(n);
+    }
+    Inner* c = Derived::copy_of(n);
+    derive(c, n, i);
+    c->child[i] = down(n->child[i], false);
+    c->box.grow(at);
+    if (owned) release(NodeRef::inner(n));
+    return NodeRef::inner(c);
+  }
+  static NodeRef set_leaf(NodeRef r, bool owned, const Landmark& lm) {
+    ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
+    return NodeRef::leaf(owned ? replace_leaf<Pool>(r.as_leaf(), lm) : new_leaf<Pool>(lm));
   }
 
   // Drops one reference; frees every node whose count reaches zero, with an explicit stack (no recursion).

@@ -124,7 +124,10 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
   static Inner* new_inner() { return new (Pool::allocate(sizeof(Inner))) Inner; }
   // n (whose reference the caller owns) made writable: itself when unshared, else a copy sharing its children.
   static Inner* writable(Inner* n) {
-    if (internal::ref_unique(n->rc)) return n;
+    if (internal::ref_unique(n->rc)) {
+      own_all(n);  // (a no-op: the tree's nodes do not borrow)
+      return n;
+    }
     Inner* c = copy_of(n);
     acquire_all(c->child);
     release(Ref::inner(n));
@@ -142,28 +145,14 @@ class PersistentTreeMap : public internal::PersistentMapBase<PersistentTreeMap, 
     return c;
   }
 
-  // Writes lm below r; returns the new subtree root. `owned` and the borrowed path child: as HamtMap::set_rec,
-  // but the tree's nodes do not borrow (derive counts the one sibling): with two children a base saves one
-  // increment per level and keeps an old path alive per copy; tried, a filter-like run was slower and held
-  // 75 % more memory.
+  // Writes lm below r; returns the new subtree root (PersistentMapBase::set_inner). The tree's nodes do not
+  // borrow, so derive counts the one sibling: with two children a base saves one increment per level and keeps
+  // an old path alive per copy; tried, a filter-like run was slower and held 75 % more memory.
   static Ref set_rec(Ref r, bool owned, const Landmark& lm, const internal::FBox& at) {
-    if (r.is_leaf()) {
-      ARBOR_CHECK(r.as_leaf()->id == lm.id, "set of absent landmark {}", lm.id);
-      return Ref::leaf(owned ? internal::replace_leaf<Pool>(r.as_leaf(), lm) : internal::new_leaf<Pool>(lm));
-    }
+    if (r.is_leaf()) return set_leaf(r, owned, lm);
     Inner* n = r.as_inner<Inner>();
-    const int side = lm.id <= n->split ? 0 : 1;
-    if (owned && internal::ref_unique(n->rc)) {
-      n->child[side] = set_rec(n->child[side], true, lm, at);
-      n->box.grow(at);
-      return Ref::inner(n);
-    }
-    Inner* c = copy_of(n);
-    derive(c, n, static_cast<std::size_t>(side));
-    c->child[side] = set_rec(n->child[side], false, lm, at);
-    c->box.grow(at);
-    if (owned) release(Ref::inner(n));
-    return Ref::inner(c);
+    const std::size_t side = lm.id <= n->split ? 0 : 1;
+    return set_inner(n, owned, side, at, [&](Ref child, bool own) { return set_rec(child, own, lm, at); });
   }
 
   static Ref insert_rec(Ref r, const Landmark& lm) {
