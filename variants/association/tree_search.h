@@ -16,6 +16,7 @@ namespace arbor::association {
 
 struct TreeScratch {
   IndividualGating gating;       // fallback classification when no hypothesis is verified
+  std::vector<int> index_by_id;  // candidate index of id candidates[0].id + e, -1 absent (dense ids only)
   std::vector<int> order;        // level k of the tree is measurement order[k]
   std::vector<int> rank;         // rank[i]: the level of measurement i (order's inverse)
   std::vector<Vec2> point;       // measured point per level, robot frame
@@ -23,6 +24,9 @@ struct TreeScratch {
   std::vector<int> loc_begin;    // locality of candidate j as candidate indices: loc[loc_begin[j] ..)
   std::vector<int> loc;
   std::vector<std::vector<int>> allowed;  // allowed[d]: candidates open after d pairings (locality search)
+  // open_levels[d][i * words + w]: word w of the levels where allowed[d][i] passes the unary constraint, the
+  // prior and the binary constraint against each of the d pairings (levels after the last paired one only).
+  std::vector<std::vector<std::uint64_t>> open_levels;
   std::vector<char> used;
   std::vector<int> current;      // candidate per level, -1 = unpaired
   std::vector<int> paired_level; // level of each pairing, in tree order
@@ -40,7 +44,7 @@ struct TreeScratch {
   std::vector<char> prior_ok;
   std::vector<int> prior_begin, prior_list;
   std::vector<GatedPair> completion;
-  // Pose-free locality search: anchor_levels[k * n + g] has bit l set when a feature of g's locality passes
+  // Pose-free locality search: anchor_levels[g * m + k] has bit l set when a feature of g's locality passes
   // the constraints at level l > k with g at level k; anchors lists every (k, g) with such a partner, the
   // most levels first; level_pairs holds the measured pairs (k < l) by distance.
   std::vector<std::uint64_t> anchor_levels, anchor_features;
@@ -55,6 +59,7 @@ struct TreeScratch {
     int k, l;
   };
   std::vector<LevelPair> level_pairs;
+  std::vector<LevelPair> level_table;  // level_table[k * m + l], k < l: the same pairs by level
 };
 
 struct TreeSettings {
