@@ -33,7 +33,8 @@ class TreeSearch {
       : p_(problem), set_(settings), s_(s), stats_(stats), m_(static_cast<int>(problem.measurements.size())),
         n_(static_cast<int>(problem.candidates.size())),
         signatures_(std::isfinite(problem.signature_sigma) && problem.signature_sigma > 0.0),
-        joint_(problem.joint_covariance.size() > 0) {}
+        joint_(problem.joint_covariance.size() > 0),
+        ranking_(settings.check_prior ? kTreeHypothesesVerified : kTreeHypothesesVerifiedPoseFree) {}
 
   void prepare() {
     canonical_measurement_order(p_, &s_.order);
@@ -329,7 +330,7 @@ class TreeSearch {
 
   bool can_enter(int pairings) const {
     if (pairings < kTreeMinPairings) return false;
-    return static_cast<int>(s_.ranked.size()) < kTreeHypothesesVerified || pairings > s_.ranked_pairings.back();
+    return static_cast<int>(s_.ranked.size()) < ranking_ || pairings > s_.ranked_pairings.back();
   }
 
   // Unary constraint: signatures agree within the gate (when the sensor gives them).
@@ -514,7 +515,7 @@ class TreeSearch {
     s_.ranked_pairings.insert(pos, depth);
     s_.ranked.insert(s_.ranked.begin() + at, s_.current);
     s_.ranked_pose.insert(s_.ranked_pose.begin() + at, pose);
-    if (static_cast<int>(s_.ranked.size()) > kTreeHypothesesVerified) {
+    if (static_cast<int>(s_.ranked.size()) > ranking_) {
       s_.ranked.pop_back();
       s_.ranked_pose.pop_back();
       s_.ranked_pairings.pop_back();
@@ -613,6 +614,7 @@ class TreeSearch {
   bool joint_;  // positions come from predictions with a joint covariance (exchange format)
   bool indexed_ = false;  // the root's anchors come from index_anchors()
   int words_ = 1;         // 64-bit words per level mask
+  int ranking_;           // verified hypotheses kept
 };
 
 }  // namespace

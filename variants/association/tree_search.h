@@ -81,6 +81,10 @@ inline constexpr std::int64_t kTreeTestWork = 16;
 
 // Verified hypotheses kept, most pairings first; the one whose completion explains most measurements wins.
 inline constexpr int kTreeHypothesesVerified = 8;
+// The same without a prior (relocalisation): against a whole map, coincidences with more tree pairings than
+// the truth are common (the truth pairs only where the anchor's locality overlaps the scan), and with 8 kept
+// the truth was crowded out in 4 of 50 kidnappings at n = 10^4 (uniform world, seed 1); 32 kept them.
+inline constexpr int kTreeHypothesesVerifiedPoseFree = 32;
 // A hypothesis needs two pairings to fix a pose, so fewer are never accepted.
 inline constexpr int kTreeMinPairings = 2;
 
