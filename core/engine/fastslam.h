@@ -553,15 +553,20 @@ class FastSlam {
   // the wrong pose, which the particle pairs from the next scan on and which would confirm the wrong pose.
   // A found pose re-seeds the particles only if it is elsewhere, pairs more measurements than the particle
   // paired with settled landmarks (by kRelocalizeMargin), and the next scan finds the same correction (a
-  // coincidence in the map rarely repeats after the odometry's motion). Every particle then takes the best
+  // coincidence in the map rarely repeats after the odometry's motion; scans too small to search in between
+  // neither confirm nor refute it, for up to kRelocalizeConfirmScans scans). Every particle then takes the best
   // particle's map, the pose, and a covariance of kRelocalizeSigma; the weights start equal.
   void relocalize_if_lost(const ScenarioStep& step) {
     const int m = static_cast<int>(step.measurements.size());
     const ParticleState& best = particles_[best_particle()];
-    if (m < options_.relocalize_min_pairings || (!pending_correction_ && 2 * best.step_paired_settled >= m)) {
-      pending_correction_.reset();
+    if (m < options_.relocalize_min_pairings) {
+      // Too few measurements to search: no evidence either way, so a pending correction waits for the next
+      // scan that can confirm it (a kidnapped robot in a sparse corridor lost its found pose to one scan of
+      // 4 measurements between two that found it).
+      if (pending_correction_ && scan_index_ - pending_scan_ > kRelocalizeConfirmScans) pending_correction_.reset();
       return;
     }
+    if (!pending_correction_ && 2 * best.step_paired_settled >= m) return;
     AssociationProblem& problem = relocalize_problem_;
     begin_problem(step.measurements, Mat3::Zero(), &problem);
     best.map.for_each([&](const Landmark& lm) {
@@ -584,6 +589,7 @@ class FastSlam {
     const Pose2 correction = found.compose(best.pose.between(Pose2{}));
     const bool confirmed = pending_correction_ && near(pending_correction_->compose(best.pose), found);
     pending_correction_ = correction;
+    pending_scan_ = scan_index_;
     if (!confirmed) return;
     pending_correction_.reset();
     const ParticleState source = best;
@@ -604,6 +610,7 @@ class FastSlam {
 
   static constexpr int kRelocalizeSettledScans = 10;
   static constexpr int kRelocalizeMargin = 3;
+  static constexpr int kRelocalizeConfirmScans = 5;  // the most scans between a found pose and its confirmation
   static constexpr double kRelocalizeAgreementM = 1.0;
   static constexpr double kRelocalizeAgreementRad = 0.1;
   inline static const Vec3 kRelocalizeSigma{0.2, 0.2, 0.03};  // [m, m, rad]: a fitted pose from ~5 pairings
@@ -633,6 +640,7 @@ class FastSlam {
   Relocalizer relocalizer_;
   AssociationProblem relocalize_problem_;
   std::optional<Pose2> pending_correction_;  // the last scan's unconfirmed relocalisation, as a correction
+  std::int32_t pending_scan_ = 0;            // the scan that found it
   std::int64_t relocalizations_ = 0;
 };
 
