@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
-#include <tuple>
+#include <numeric>
 #include <vector>
 
 #include <fmt/core.h>
@@ -22,6 +22,7 @@
 #include "experiments/options/option_checks.h"
 #include "experiments/sim/simulator.h"
 #include "experiments/sim/world.h"
+#include "variants/association/association_common.h"
 #include "variants/association/strategy_list.h"
 
 namespace arbor::cli {
@@ -88,42 +89,34 @@ AssociationCandidate make_candidate(const KnownMap& map, int j, const Pose2& pri
   return c;
 }
 
-// The ceiling any strategy faces: gated nearest neighbour at the TRUE pose against the whole known map,
-// pairs taken by increasing Mahalanobis distance. It fails where the data are ambiguous whatever the search:
-// a clutter point inside the gate of a mapped landmark the scan did not measure, or two landmarks closer than
-// the map's noise whose estimates are nearer crosswise.
-std::vector<LandmarkId> oracle_pairing(const AssociationProblem& measured, const Pose2& truth, const KnownMap& map,
+// The ceiling any strategy faces: gated nearest neighbour at the TRUE pose against the whole known map
+// (`whole_map`, whose candidate j is landmark j), pairs taken by increasing Mahalanobis distance. It fails
+// where the data are ambiguous whatever the search: a clutter point inside the gate of a mapped landmark the
+// scan did not measure, or two landmarks closer than the map's noise whose estimates are nearer crosswise.
+std::vector<LandmarkId> oracle_pairing(const AssociationProblem& whole_map, const Pose2& truth, const KnownMap& map,
                                        const LandmarkGrid& grid, double gate2) {
-  struct Pair {
-    double d2;
-    int i, j;
-  };
-  std::vector<Pair> pairs;
+  const int m = static_cast<int>(whole_map.measurements.size());
+  std::vector<association::GatedPair> pairs;
   const double c = std::cos(truth.theta), s = std::sin(truth.theta);
   Mat2 rot;
   rot << c, -s, s, c;
-  for (std::size_t i = 0; i < measured.measurements.size(); ++i) {
+  for (int i = 0; i < m; ++i) {
     Mat2 J;
-    const Vec2 w = truth.transform(range_bearing_inverse(Pose2{}, measured.measurements[i].z, &J));
-    const Mat2 cov = rot * J * measured.R * J.transpose() * rot.transpose() + map.cov;
+    const Vec2 w = truth.transform(range_bearing_inverse(Pose2{}, whole_map.measurements[i].z, &J));
+    const Mat2 cov = rot * J * whole_map.R * J.transpose() * rot.transpose() + map.cov;
     const Mat2 inverse = cov.inverse();
     // r^T C^-1 r <= gate2 implies |r| <= sqrt(gate2 * trace C); the metre covers the map's noise.
     grid.visit_within(w, std::sqrt(gate2 * cov.trace()) + 1.0, [&](int j) {
       const Vec2 r = w - map.mean[j];
       const double d2 = r.dot(inverse * r);
-      if (d2 <= gate2) pairs.push_back({d2, static_cast<int>(i), j});
+      if (d2 <= gate2) pairs.push_back({d2, i, j});
     });
   }
-  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
-    return std::tie(a.d2, a.i, a.j) < std::tie(b.d2, b.i, b.j);
-  });
-  std::vector<LandmarkId> pairing(measured.measurements.size(), -1);
+  std::vector<int> rank(m);
+  std::iota(rank.begin(), rank.end(), 0);
   std::vector<char> taken(map.mean.size(), 0);
-  for (const Pair& p : pairs) {
-    if (pairing[p.i] >= 0 || taken[p.j]) continue;
-    pairing[p.i] = p.j;
-    taken[p.j] = 1;
-  }
+  std::vector<LandmarkId> pairing(m, association::kUnassigned);
+  association::pair_greedily(whole_map, rank, &pairs, &taken, &pairing);
   return pairing;
 }
 
@@ -236,7 +229,6 @@ int run_relocalize(const RelocalizeArgs& a) {
         tally[s].success += relocalised(r.pairing, truth_ids);
       });
     }
-    whole_map.R = R;
     oracle_success += relocalised(oracle_pairing(whole_map, truth, map, grid, gate2), truth_ids);
   }
   if (a.csv) fmt::print("strategy,world,n,m,clutter,trials,success_rate,median_hypotheses,median_time_s\n");

@@ -82,7 +82,6 @@ TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) 
   EXPECT_EQ(hex.exit_code, 0) << hex.output;
 }
 
-// Exit 1, not 2, when the input is fine but the output cannot be written (/proc takes no new files).
 // `arbor relocalize` reports beside the strategies the ceiling of its trials: gated nearest neighbour at the
 // true pose. With a sharp map and no clutter nothing is ambiguous (every trial relocalises); with clutter
 // and a map noisier than the landmark spacing allows, some trials fail even there (measured: 8 of 10).
@@ -96,6 +95,7 @@ TEST(Cli, RelocalizeReportsTheCeilingAtTheTruePose) {
   EXPECT_NE(ambiguous.output.find("\noracle,uniform,200,10,4,10,0.8000,"), std::string::npos) << ambiguous.output;
 }
 
+// Exit 1, not 2, when the input is fine but the output cannot be written (/proc takes no new files).
 TEST(Cli, AnUnwritableOutputExitsOneNotTwo) {
   const auto r = run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out /proc/arbor_cli_test.scn");
   EXPECT_EQ(r.exit_code, 1) << r.output;
