@@ -30,11 +30,12 @@ std::string associations_csv(const std::vector<StepDecisions>& decisions) {
 }
 
 std::string steps_csv(const std::vector<StepRecord>& steps) {
-  std::string out = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees\n";
+  std::string out = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees,relocalized\n";
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const StepRecord& s = steps[k];
-    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{}\n", k, s.time_s, s.step_time_s, s.n_eff,
-                   s.resampled ? 1 : 0, s.landmarks, s.hypotheses, s.nees ? fmt::format("{}", *s.nees) : "");
+    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{},{}\n", k, s.time_s, s.step_time_s, s.n_eff,
+                   s.resampled ? 1 : 0, s.landmarks, s.hypotheses, s.nees ? fmt::format("{}", *s.nees) : "",
+                   s.relocalized ? 1 : 0);
   }
   return out;
 }
@@ -71,7 +72,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     tests += stats.tests;
     budget_exhausted += stats.budget_exhausted;
     StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats.n_eff, stats.resampled,
-                                                           stats.best_landmarks, stats.hypotheses, std::nullopt});
+                                                           stats.best_landmarks, stats.hypotheses, std::nullopt,
+                                                           stats.relocalized});
     if (step.has_scan || step.truth_pose) {
       const PoseEstimate estimate = filter->estimate();
       mean_trajectory.push_back({step.time_s, estimate.mean});

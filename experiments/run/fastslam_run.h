@@ -39,6 +39,7 @@ struct StepRecord {
   std::size_t landmarks = 0;       // in the best particle's map, provisional ones included
   std::int64_t hypotheses = 0;
   std::optional<double> nees;      // at steps with a truth pose
+  bool relocalized = false;        // every particle was re-seeded at a relocalised pose (--relocalize)
 };
 
 // Everything a run leaves: write_run_files turns it into the files of DESIGN.md §9.
