@@ -3,7 +3,10 @@
 the best particle's position is first back within max(RECOVERED_M, BASELINE_FACTOR x its median error in the
 BASELINE_SCANS scans before the kidnap) of the truth (none: lost), and its error ten
 scans after the kidnap and at the end; the share of seeds that recover within 10 scans; relocalisations on
-the runs without a kidnap (there they can only be loop closures or mistakes: compare their ATE).
+the runs without a kidnap (there they can only be loop closures or mistakes). Each re-seeding (the
+`relocalized` column of steps.csv, written since 4eb58b0) counts as closer when the best particle's error at
+its step is below the error at the step before, and as further otherwise: a loop closure or a recovery moves
+the robot towards the truth, a mistake away from it.
 
 Usage: /usr/bin/python3 analysis/kidnap.py OUT   (writes OUT/kidnap.csv and OUT/kidnap.md)
 """
@@ -35,12 +38,38 @@ def recovery(run, scenario, kidnap):
     both = truth.merge(est[["key", "x", "y"]], on="key", suffixes=("", "_est"))
     errors = list(zip(both.t, np.hypot(both.x_est - both.x, both.y_est - both.y)))
     if kidnap is None:
-        return None, None, errors[-1][1]
+        return None, None, errors[-1][1], errors
     before = sorted([e for t, e in errors if t < kidnap][-BASELINE_SCANS:])
     threshold = max(RECOVERED_M, BASELINE_FACTOR * before[len(before) // 2])
     after = [e for t, e in errors if t >= kidnap]
     scans = next((i for i, e in enumerate(after) if e <= threshold), None)
-    return scans, after[WITHIN_SCANS], errors[-1][1]
+    return scans, after[WITHIN_SCANS], errors[-1][1], errors
+
+
+def reseedings(run, errors):
+    """(re-seedings that brought the robot closer to the truth, ones that took it further), or None when the
+    run has no steps.csv or one that predates the relocalized column."""
+    if not (run / "steps.csv").exists():
+        return None
+    with open(run / "steps.csv", newline="") as f:
+        steps = list(csv.DictReader(f))
+    if not steps or "relocalized" not in steps[0]:
+        return None
+    error_at = {round(t, 6): e for t, e in errors}
+    times = sorted(error_at)
+    closer = further = 0
+    for s in steps:
+        if s["relocalized"] != "1":
+            continue
+        t = round(float(s["time_s"]), 6)
+        i = times.index(t)
+        if i == 0:
+            continue
+        if error_at[t] < error_at[times[i - 1]]:
+            closer += 1
+        else:
+            further += 1
+    return closer, further
 
 
 def main():
@@ -52,21 +81,25 @@ def main():
         world, kind, seed, mode = run.name.split("-")
         result = json.loads((run / "result.json").read_text())
         kidnap = result["scenario"].get("kidnap_time_s")
-        scans, error_10, final_error = recovery(run, out / "scenarios" / f"{world}-{kind}-{seed}.scn",
-                                                None if kidnap is None else float(kidnap))
+        scans, error_10, final_error, errors = recovery(run, out / "scenarios" / f"{world}-{kind}-{seed}.scn",
+                                                        None if kidnap is None else float(kidnap))
+        moves = reseedings(run, errors)
         rows.append({"world": world, "kidnap": kind == "kidnap", "seed": int(seed[1:]), "relocalize": mode == "relocalize",
                      "recovery_scans": "" if scans is None else scans,
                      "error_after_10_scans_m": "" if error_10 is None else round(error_10, 3),
                      "final_error_m": round(final_error, 3),
                      "ate_rmse_m": round(result["ate_rmse_m"], 3), "relocalizations": result.get("relocalizations", 0),
-                     "assoc_f1": round(result["assoc_f1"], 4)})
+                     "assoc_f1": round(result["assoc_f1"], 4),
+                     "reseedings_closer": "" if moves is None else moves[0],
+                     "reseedings_further": "" if moves is None else moves[1]})
     with open(out / "kidnap.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
     lines = ["| world | kidnap | relocalize | seeds | recovered within 10 scans | recovered at all | median scans to recover | "
-             "median error 10 scans after the kidnap [m] | mean ATE [m] | runs with a relocalisation | relocalisations |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "median error 10 scans after the kidnap [m] | mean ATE [m] | runs with a relocalisation | relocalisations | "
+             "closer / further |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for world in sorted({r["world"] for r in rows}):
         for kidnap in (True, False):
             for reloc in (False, True):
@@ -81,10 +114,13 @@ def main():
                 ate = sum(r["ate_rmse_m"] for r in sel) / len(sel)
                 with_reloc = sum(1 for r in sel if r["relocalizations"] > 0)
                 total = sum(r["relocalizations"] for r in sel)
+                known = [r for r in sel if r["reseedings_closer"] != ""]
+                moves = (f"{sum(r['reseedings_closer'] for r in known)} / {sum(r['reseedings_further'] for r in known)}"
+                         if known else "-")
                 k = "yes" if kidnap else "no"
                 recovered = f"{within}/{len(sel)} | {len(rec)} | {med} | {e10_text}" if kidnap else "- | - | - | -"
                 lines.append(f"| {world} | {k} | {'on' if reloc else 'off'} | {len(sel)} | {recovered} | "
-                             f"{ate:.2f} | {with_reloc} | {total} |")
+                             f"{ate:.2f} | {with_reloc} | {total} | {moves} |")
     (out / "kidnap.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 

@@ -592,7 +592,9 @@ class FastSlam {
     pending_scan_ = scan_index_;
     if (!confirmed) return;
     pending_correction_.reset();
-    const ParticleState source = best;
+    ParticleState source = best;
+    // This scan's pose was recorded before the search; the trajectory should show where the scan was taken.
+    source.history.replace_newest({step.time_s, found});
     const Mat3 covariance = kRelocalizeSigma.cwiseAbs2().asDiagonal();
     for (auto& p : particles_) {
       p = source;

@@ -32,6 +32,16 @@ class PersistentHistory {
     live_nodes_counter().fetch_add(1, std::memory_order_relaxed);
   }
 
+  // Replaces the newest entry (a relocalised particle's pose for the step that recorded the lost one); the
+  // older entries stay shared. The history must not be empty.
+  void replace_newest(Entry entry) {
+    Node* old = head_;
+    retain(old->parent);
+    head_ = new Node{{1}, old->parent, std::move(entry)};
+    live_nodes_counter().fetch_add(1, std::memory_order_relaxed);
+    release(old);
+  }
+
   bool empty() const { return head_ == nullptr; }
   // Oldest first; O(T).
   std::vector<Entry> to_vector() const {

@@ -8,6 +8,7 @@
 # Scale with SEEDS, WORLDS; RELOCALIZE_ARGS is added to the relocalising runs (e.g. "--relocalize-min-pairings 4").
 set -euo pipefail
 source "$(dirname "$0")/study_setup.sh"  # $out, $arbor, the repository root as working directory, once
+KEEP_STEPS=1  # analysis/kidnap.py reads which scans re-seeded from steps.csv
 seeds=${SEEDS:-$(seq 1 20)}
 worlds=${WORLDS:-"uniform rooms"}
 read -r -a relocalize_args <<< "${RELOCALIZE_ARGS:-}"

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <vector>
 
 #include "core/engine/persistent_history.h"
 #include "core/engine/resampling.h"
@@ -74,6 +75,24 @@ TEST(PoseHistory, CopiesShareTheirPastAndTheLastOneFreesIt) {
     EXPECT_EQ(a.to_vector().back().pose.x, -10);
     EXPECT_EQ(b.to_vector().back().pose.x, 10);
     EXPECT_EQ(a.to_vector().size(), 11u);
+  }
+  EXPECT_EQ(PoseHistory::live_nodes(), before);
+}
+
+// A relocalised particle rewrites the pose of the step it was found at; a copy taken before keeps the old one.
+TEST(PoseHistory, ReplacingTheNewestEntryLeavesCopiesAndTheOlderPastAlone) {
+  const auto before = PoseHistory::live_nodes();
+  {
+    PoseHistory a;
+    for (int i = 0; i < 5; ++i) a.push({double(i), {double(i), 0, 0}});
+    const PoseHistory copy = a;
+    a.replace_newest({4, {40, 0, 0}});
+    const std::vector<TimedPose> mine = a.to_vector(), theirs = copy.to_vector();
+    ASSERT_EQ(mine.size(), 5u);
+    EXPECT_EQ(mine.back().pose.x, 40);
+    EXPECT_EQ(theirs.back().pose.x, 4);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(mine[i].pose.x, i);
+    EXPECT_EQ(PoseHistory::live_nodes() - before, 6);  // one new node; the four older ones shared
   }
   EXPECT_EQ(PoseHistory::live_nodes(), before);
 }
