@@ -21,9 +21,10 @@ namespace arbor::internal {
 //
 // The counters are statistics, read when the threads are quiescent (tests, stats). Each thread keeps its own
 // tally and writes it with a plain load and store: a shared counter needs a locked add, which on x86 also
-// waits for every load before it, and a tree set at 10^6 made ~80 of them (two per node allocated or freed,
-// ~20 nodes each way), a third of its time. A reader sums the tallies; a thread's tally outlives the thread
-// (what it allocated may be freed elsewhere, so only the sum means anything).
+// waits for every load before it, two per node allocated or freed, ~60 per tree set at 10^4 landmarks. Where
+// the map stays in cache they were a third of a set's time (results/maps/4eb58b0ffc_vm_gcc-12.2.0). A reader
+// sums the tallies; a thread's tally outlives the thread (what it allocated may be freed elsewhere, so only
+// the sum means anything).
 template <class Tag>
 class NodePool {
  public:
