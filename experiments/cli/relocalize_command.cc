@@ -97,13 +97,10 @@ std::vector<LandmarkId> oracle_pairing(const AssociationProblem& whole_map, cons
                                        const LandmarkGrid& grid, double gate2) {
   const int m = static_cast<int>(whole_map.measurements.size());
   std::vector<association::GatedPair> pairs;
-  const double c = std::cos(truth.theta), s = std::sin(truth.theta);
-  Mat2 rot;
-  rot << c, -s, s, c;
   for (int i = 0; i < m; ++i) {
-    Mat2 J;
-    const Vec2 w = truth.transform(range_bearing_inverse(Pose2{}, whole_map.measurements[i].z, &J));
-    const Mat2 cov = rot * J * whole_map.R * J.transpose() * rot.transpose() + map.cov;
+    const Vec2& z = whole_map.measurements[i].z;
+    const Vec2 w = range_bearing_inverse(truth, z);
+    const Mat2 cov = range_bearing_initial_covariance(truth, z, whole_map.R) + map.cov;
     const Mat2 inverse = cov.inverse();
     // r^T C^-1 r <= gate2 implies |r| <= sqrt(gate2 * trace C); the metre covers the map's noise.
     grid.visit_within(w, std::sqrt(gate2 * cov.trace()) + 1.0, [&](int j) {
