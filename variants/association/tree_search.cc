@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <utility>
 
@@ -20,6 +21,8 @@ namespace {
 
 // Variance floor for the distance constraint [m^2]: keeps exact (noise-free) problems well posed.
 constexpr double kMinDistanceVariance = 1e-12;
+// anchor_pairs' mark for a pair not yet computed.
+constexpr double kNotComputed = std::numeric_limits<double>::quiet_NaN();
 // The anchor index keeps one bit per level (a 64-bit mask); larger scans search without it.
 constexpr int kMaxIndexedLevels = 64;
 static_assert(LocalitySet::kCapacity <= 64, "the anchor index keeps one bit per locality feature");
@@ -48,6 +51,12 @@ class TreeSearch {
       Mat2 J;
       s_.point[k] = range_bearing_inverse(origin, z, &J);
       s_.point_cov[k] = J * p_.R * J.transpose();
+    }
+    s_.position.resize(n_);
+    s_.position_cov.resize(n_);
+    for (int j = 0; j < n_; ++j) {
+      s_.position[j] = p_.candidates[j].position;
+      s_.position_cov[j] = p_.candidates[j].position_cov;
     }
     if (joint_) {
       s_.jacobian.resize(n_);
@@ -114,7 +123,8 @@ class TreeSearch {
         // allowed[depth] is stable while deeper levels rewrite allowed[depth + 1 ..].
         for (std::size_t e = 0; e < s_.allowed[depth].size() && !stats_->budget_exhausted; ++e) {
           const int g = s_.allowed[depth][e];
-          if (!s_.used[g] && level_open(s_.open_levels[depth].data() + e * words_, k)) pair(k, depth, g);
+          if (!s_.used[g] && level_open(s_.open_levels[depth].data() + e * words_, k))
+            pair(k, depth, g, static_cast<int>(e));
         }
       }
       if (stats_->budget_exhausted) return;
@@ -139,6 +149,7 @@ class TreeSearch {
     }
     // Each verified hypothesis is completed with its pose; the one whose pose explains the most measurements
     // wins (ties: rank order). A wrong pose that happens to fit a few features explains little else.
+    index_by_x();
     std::vector<int> accepted;
     Pose2 pose;
     int best_count = -1;
@@ -253,19 +264,20 @@ class TreeSearch {
         std::sqrt(set_.binary_gate * (kMinDistanceVariance + widest_variance + 2.0 * candidate_variance));
     s_.anchor_levels.assign(static_cast<std::size_t>(m_) * n_, 0);
     s_.anchor_features.assign(static_cast<std::size_t>(m_) * n_, 0);
+    s_.edge_distance.resize(s_.loc.size());
+    s_.edge_variance.resize(s_.loc.size());
     for (int g = 0; g < n_; ++g) {
       for (int e = s_.loc_begin[g]; e < s_.loc_begin[g + 1]; ++e) {
         const int h = s_.loc[e];
-        const Vec2 dm = p_.candidates[g].position - p_.candidates[h].position;
-        const double lm = dm.norm();
-        const double map_variance = feature_distance_variance(g, h, dm, lm);
+        const Vec2 dm = s_.position[g] - s_.position[h];
+        const double lm = s_.edge_distance[e] = dm.norm();
+        const double map_variance = s_.edge_variance[e] = feature_distance_variance(g, h, dm, lm);
         auto it = std::lower_bound(s_.level_pairs.begin(), s_.level_pairs.end(), lm - reach,
                                    [](const auto& pair, double v) { return pair.distance < v; });
         for (; it != s_.level_pairs.end() && it->distance <= lm + reach; ++it) {
           ++stats_->tests;
           // binary(k, g, l, h), its terms computed once per measured pair and once per feature pair.
-          const double d = it->distance - lm;
-          if (d * d > set_.binary_gate * (it->variance + map_variance)) continue;
+          if (!distances_match(*it, lm, map_variance)) continue;
           if (unary(it->k, g) && unary(it->l, h)) {
             s_.anchor_levels[static_cast<std::size_t>(g) * m_ + it->k] |= std::uint64_t{1} << it->l;
             s_.anchor_features[static_cast<std::size_t>(g) * m_ + it->k] |= std::uint64_t{1} << (e - s_.loc_begin[g]);
@@ -346,11 +358,33 @@ class TreeSearch {
   // sum of both point covariances projected on the measured direction and both landmark covariances
   // projected on the map direction (first order).
   bool binary(int ka, int f, int kb, int g) const {
-    const LevelPair measured = indexed_ ? s_.level_table[static_cast<std::size_t>(ka) * m_ + kb] : level_pair(ka, kb);
-    const Vec2 dm = p_.candidates[f].position - p_.candidates[g].position;
+    const LevelPair measured = measured_pair(ka, kb);
+    const Vec2 dm = s_.position[f] - s_.position[g];
     const double lm = dm.norm();
+    return distances_match(measured, lm, feature_distance_variance(f, g, dm, lm));
+  }
+
+  // Levels ka < kb: their measured distance, from the table when the anchor index built one.
+  LevelPair measured_pair(int ka, int kb) const {
+    return indexed_ ? s_.level_table[static_cast<std::size_t>(ka) * m_ + kb] : level_pair(ka, kb);
+  }
+
+  // The map side of binary(ka, f, kb, h) for members a (feature f) and b (feature h) of the anchor's
+  // locality of size c: computed once per anchor.
+  const std::pair<double, double>& anchor_pair(int a, int b, std::size_t c, int f, int h) {
+    std::pair<double, double>& cached = s_.anchor_pairs[static_cast<std::size_t>(a) * c + b];
+    if (std::isnan(cached.first)) {
+      const Vec2 dm = s_.position[f] - s_.position[h];
+      const double lm = dm.norm();
+      cached = {lm, feature_distance_variance(f, h, dm, lm)};
+    }
+    return cached;
+  }
+
+  // The binary gate on a measured distance and a map distance lm with its variance.
+  bool distances_match(const LevelPair& measured, double lm, double map_variance) const {
     const double d = measured.distance - lm;
-    return d * d <= set_.binary_gate * (measured.variance + feature_distance_variance(f, g, dm, lm));
+    return d * d <= set_.binary_gate * (measured.variance + map_variance);
   }
 
   // The measured distance of levels ka and kb and its variance, with the floor that keeps exact problems
@@ -370,7 +404,7 @@ class TreeSearch {
   double feature_distance_variance(int f, int g, const Vec2& dm, double lm) const {
     if (lm <= 0.0) return 0.0;
     const Vec2 v = dm / lm;
-    Mat2 cov = p_.candidates[f].position_cov + p_.candidates[g].position_cov;
+    Mat2 cov = s_.position_cov[f] + s_.position_cov[g];
     if (joint_) {
       // Positions recovered from predictions share the pose error, which cancels in their difference:
       // Cov(m_f - m_g) = Sigma_f + Sigma_g - X_fg - X_fg^T, X_fg = J_f C_fg J_g^T.
@@ -386,14 +420,14 @@ class TreeSearch {
     pair(k, depth, g);
   }
 
-  // Pairs g at level k, its constraints passed.
-  void pair(int k, int depth, int g) {
+  // Pairs g at level k, its constraints passed; slot: g's place in the open set allowed[depth] (-1 at depth 0).
+  void pair(int k, int depth, int g, int slot = -1) {
     if (stats_->hypotheses >= set_.max_hypotheses || stats_->tests >= set_.max_work / kTreeTestWork) {
       stats_->budget_exhausted = true;
       return;
     }
     ++stats_->hypotheses;
-    if (set_.use_locality) open_after(k, depth, g);
+    if (set_.use_locality) open_after(k, depth, g, slot);
     s_.used[g] = 1;
     s_.current[k] = g;
     s_.paired_level[depth] = k;
@@ -405,7 +439,7 @@ class TreeSearch {
   // The open set after pairing g at level k, with the levels where each open feature still passes every
   // constraint: the parent's levels narrowed by the binary test against g, so each (feature, level) pair
   // is tested once per node rather than at every node below it.
-  void open_after(int k, int depth, int g) {
+  void open_after(int k, int depth, int g, int slot) {
     // The remaining measurements may pair only with features in the locality of the first paired feature
     // (the anchor), so the open set never exceeds c features: the bound n((c+1)^m - 1)/c + 1.
     std::vector<int>& next = s_.allowed[depth + 1];
@@ -417,6 +451,8 @@ class TreeSearch {
     // Anchor rule: the open set stays the first paired feature's locality. Intersection rule: it shrinks
     // to the features covisible with every paired one.
     if (depth == 0) {
+      const std::size_t c = static_cast<std::size_t>(end - begin);
+      s_.anchor_pairs.assign(c * c, {kNotComputed, kNotComputed});
       // The anchor index already found the features and the levels that pass with g at k; only their
       // combinations need the test.
       const std::size_t anchor = static_cast<std::size_t>(g) * m_ + k;
@@ -425,16 +461,24 @@ class TreeSearch {
         for (int w = 0; w < words_; ++w) masks.push_back(0);
         std::uint64_t* mask = masks.data() + masks.size() - words_;
         if (indexed_ && !((s_.anchor_features[anchor] >> (h - begin)) & 1u)) continue;
+        const std::size_t edge = static_cast<std::size_t>(s_.loc_begin[g] + (h - begin));
         for (int l = k + 1; l < m_; ++l) {
           if (indexed_ && !((s_.anchor_levels[anchor] >> l) & 1u)) continue;
           if (set_.check_prior && !s_.prior_ok[static_cast<std::size_t>(l) * n_ + *h]) continue;
           ++stats_->tests;
-          if (unary(l, *h) && binary(k, g, l, *h)) mask[l / 64] |= std::uint64_t{1} << (l % 64);
+          // binary(k, g, l, h); the anchor index holds the map side of the pair g, h.
+          const bool fits = indexed_ ? distances_match(s_.level_table[static_cast<std::size_t>(k) * m_ + l],
+                                                       s_.edge_distance[edge], s_.edge_variance[edge])
+                                     : binary(k, g, l, *h);
+          if (unary(l, *h) && fits) mask[l / 64] |= std::uint64_t{1} << (l % 64);
         }
       }
       return;
     }
     const std::vector<int>& open = s_.allowed[depth];
+    // Under the anchor rule the open set is the anchor's locality at every depth, so g and h are its members
+    // `slot` and i, and their map distance is cached for the whole subtree.
+    const bool cached = set_.anchor_only && slot >= 0;
     for (std::size_t i = 0; i < open.size(); ++i) {
       const int h = open[i];
       if (!set_.anchor_only && std::find(begin, end, h) == end) continue;
@@ -442,13 +486,20 @@ class TreeSearch {
       next.push_back(h);
       for (int w = 0; w < words_; ++w) masks.push_back(0);
       std::uint64_t* mask = masks.data() + masks.size() - words_;
+      const std::pair<double, double>* map_pair = nullptr;
       for (int w = k / 64; w < words_; ++w) {
         std::uint64_t bits = parent[w];
         if (w == k / 64) bits &= k % 64 == 63 ? 0 : ~std::uint64_t{0} << (k % 64 + 1);
         for (; bits != 0; bits &= bits - 1) {
           const int l = 64 * w + std::countr_zero(bits);
           ++stats_->tests;
-          if (binary(k, g, l, h)) mask[w] |= std::uint64_t{1} << (l % 64);
+          if (!cached) {
+            if (binary(k, g, l, h)) mask[w] |= std::uint64_t{1} << (l % 64);
+            continue;
+          }
+          if (map_pair == nullptr) map_pair = &anchor_pair(slot, static_cast<int>(i), open.size(), g, h);
+          if (distances_match(measured_pair(k, l), map_pair->first, map_pair->second))
+            mask[w] |= std::uint64_t{1} << (l % 64);
         }
       }
     }
@@ -531,7 +582,7 @@ class TreeSearch {
     for (int k = 0; k < m_; ++k) {
       if (h[k] < 0) continue;
       s_.fit_p.push_back(s_.point[k]);
-      s_.fit_q.push_back(p_.candidates[h[k]].position);
+      s_.fit_q.push_back(s_.position[h[k]]);
     }
     const int pairs = static_cast<int>(s_.fit_p.size());
     if (pairs < kTreeMinPairings || !align_rigid_2d(s_.fit_p, s_.fit_q, pose)) return false;
@@ -541,14 +592,28 @@ class TreeSearch {
     double d2 = 0.0;
     for (int k = 0; k < m_; ++k) {
       if (h[k] < 0) continue;
-      const Vec2 r = pose->transform(s_.point[k]) - p_.candidates[h[k]].position;
+      const Vec2 r = pose->transform(s_.point[k]) - s_.position[h[k]];
       Mat2 inverse;
-      if (!invert_spd2(rot * s_.point_cov[k] * rot.transpose() + p_.candidates[h[k]].position_cov, &inverse))
+      if (!invert_spd2(rot * s_.point_cov[k] * rot.transpose() + s_.position_cov[h[k]], &inverse))
         return false;
       d2 += r.dot(inverse * r);
     }
     ++stats_->tests;
     return d2 <= set_.joint_gate(2 * pairs - 3);
+  }
+
+  // complete()'s index: the candidates by world x, and the widest candidate covariance trace. A candidate
+  // without a finite position could never pass the gate, so it is left out (and cannot upset the sort).
+  void index_by_x() {
+    s_.by_x.clear();
+    widest_candidate_trace_ = 0.0;
+    for (int j = 0; j < n_; ++j) {
+      const double x = s_.position[j].x();
+      if (!std::isfinite(x)) continue;
+      s_.by_x.push_back({x, j});
+      widest_candidate_trace_ = std::max(widest_candidate_trace_, s_.position_cov[j].trace());
+    }
+    std::sort(s_.by_x.begin(), s_.by_x.end());
   }
 
   // With a verified pose, the measurements the (possibly locality-capped) search left open are gated against
@@ -569,19 +634,24 @@ class TreeSearch {
       const Vec2 w = pose->transform(s_.point[k]);
       const Mat2 cov_w = rot * s_.point_cov[k] * rot.transpose();
       const double trace_w = s_.point_cov[k].trace();  // a rotation keeps the trace
-      for (int j = 0; j < n_; ++j) {
-        const Vec2 r = w - p_.candidates[j].position;
+      // No candidate beyond this x distance passes the trace bound below (padded against rounding in sqrt).
+      const double radius = std::sqrt(widest_gate * (trace_w + widest_candidate_trace_)) * (1.0 + 1e-9) + 1e-12;
+      auto it = std::lower_bound(s_.by_x.begin(), s_.by_x.end(), w.x() - radius,
+                                 [](const std::pair<double, int>& c, double x) { return c.first < x; });
+      for (; it != s_.by_x.end() && it->first <= w.x() + radius; ++it) {
+        const int j = it->second;
+        ++stats_->tests;
+        const Vec2 r = w - s_.position[j];
         // r^T A^-1 r >= |r|^2 / lambda_max(A) >= |r|^2 / trace(A): far candidates are passed over without
         // inverting A, and the bound is exact, so no decision changes.
-        if (r.squaredNorm() > widest_gate * (trace_w + p_.candidates[j].position_cov.trace())) continue;
+        if (r.squaredNorm() > widest_gate * (trace_w + s_.position_cov[j].trace())) continue;
         Mat2 inverse;
-        if (!invert_spd2(cov_w + p_.candidates[j].position_cov, &inverse)) continue;
+        if (!invert_spd2(cov_w + s_.position_cov[j], &inverse)) continue;
         const double d2 = r.dot(inverse * r);
         if (d2 <= set_.new_landmark_gate) near_level[k] = 1;
         if ((*h)[k] < 0 && !s_.used[j] && d2 <= set_.gate2) s_.gating.pairs.push_back({d2, k, j});
       }
     }
-    stats_->tests += static_cast<std::int64_t>(m_) * n_;
     for (int k = 0; k < m_; ++k) s_.gating.near_any[s_.order[k]] = near_level[k];
     if (s_.gating.pairs.empty()) return;
     auto& pairs = s_.gating.pairs;
@@ -615,6 +685,7 @@ class TreeSearch {
   bool indexed_ = false;  // the root's anchors come from index_anchors()
   int words_ = 1;         // 64-bit words per level mask
   int ranking_;           // verified hypotheses kept
+  double widest_candidate_trace_ = 0.0;  // set by index_by_x()
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #define ARBOR_VARIANTS_ASSOCIATION_TREE_SEARCH_H_
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/association/association_problem.h"
@@ -19,6 +20,10 @@ struct TreeScratch {
   std::vector<int> index_by_id;  // candidate index of id candidates[0].id + e, -1 absent (dense ids only)
   std::vector<int> order;        // level k of the tree is measurement order[k]
   std::vector<int> rank;         // rank[i]: the level of measurement i (order's inverse)
+  // The candidates' world positions and covariances, packed: the searches read them for random candidates
+  // (locality members), and a whole map's candidates are ten times larger than these.
+  std::vector<Vec2> position;
+  std::vector<Mat2> position_cov;
   std::vector<Vec2> point;       // measured point per level, robot frame
   std::vector<Mat2> point_cov;   // its covariance J R J^T
   std::vector<int> loc_begin;    // locality of candidate j as candidate indices: loc[loc_begin[j] ..)
@@ -60,6 +65,17 @@ struct TreeScratch {
   };
   std::vector<LevelPair> level_pairs;
   std::vector<LevelPair> level_table;  // level_table[k * m + l], k < l: the same pairs by level
+  // Per locality entry loc[e] of candidate g: the map distance |m_g - m_h| and its variance, computed once by
+  // the anchor index and read again by the anchors' first binary tests.
+  std::vector<double> edge_distance, edge_variance;
+  // Below an anchor (one paired feature, the open set its locality): anchor_pairs[a * c + b] holds the map
+  // distance and its variance of locality members a and b, computed at their first binary test (NaN before),
+  // since every deeper node tests the same few pairs again at other levels.
+  std::vector<std::pair<double, double>> anchor_pairs;
+  // The completion's spatial index: (world x, candidate) by x, so that each measurement examines only the
+  // candidates within its widest gate; scanning the whole map for each of 32 verified hypotheses was a
+  // quarter of a pose-free search at n = 10^4.
+  std::vector<std::pair<double, int>> by_x;
 };
 
 struct TreeSettings {
