@@ -88,6 +88,10 @@ struct AssociationOptions {
   // Known association trusts the ids, not the measurements: a pairing whose innovation lies outside this
   // chi-square gate (2 dof, pose and landmark uncertainty included) is refused and counted. 1: no gate.
   double known_gate_probability = 0.999;
+  // Pose-free tree search (relocalisation): stop at the first verified pose whose completion explains at least
+  // this fraction of the scan's measurements (and at least 3 of them), like a relocaliser that accepts the
+  // first pose with enough inliers. 0: search to the bound, then pick the best of the ranked poses.
+  double accept_explained = 0.0;
 };
 
 // What a strategy is and promises. The one strategy list (variants/association/strategy_list.h) is filtered

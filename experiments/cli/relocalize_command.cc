@@ -38,6 +38,7 @@ struct RelocalizeArgs {
   double jump_m = 10.0;
   double jump_rad = 1.0;
   double map_sigma_m = 0.1;
+  double accept = 0.0;
   std::vector<std::string> strategies{"nn", "jcbb", "locality"};
   bool csv = false;
 };
@@ -153,6 +154,7 @@ int run_relocalize(const RelocalizeArgs& a) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);
   AssociationOptions options;
+  options.accept_explained = a.accept;
   std::vector<Tally> tally(a.strategies.size());
   // Pose covariance the prior claims (odometry-sized), far smaller than the jump: the prior is confidently wrong.
   const Mat3 P = Vec3(0.5 * 0.5, 0.5 * 0.5, 0.1 * 0.1).asDiagonal();
@@ -271,6 +273,11 @@ void add_relocalize_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--jump-m", args->jump_m, "Position jump of the kidnapping [m]")->capture_default_str();
   cmd->add_option("--jump-rad", args->jump_rad, "Heading jump of the kidnapping [rad]")->capture_default_str();
   cmd->add_option("--map-sigma", args->map_sigma_m, "Std dev of the known map's landmark estimates [m]")
+      ->capture_default_str();
+  cmd->add_option("--accept", args->accept,
+                  "Pose-free search: stop at the first pose that explains this fraction of the scan (0: search to "
+                  "the bound)")
+      ->check(within(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--assoc", args->strategies, "Strategies to compare")->delimiter(',')->capture_default_str();
   cmd->add_flag("--csv", args->csv, "CSV output with a header line");

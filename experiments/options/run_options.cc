@@ -90,6 +90,11 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
                   "Pairings a relocalised pose must explain")
       ->check(at_least(3))
       ->capture_default_str();
+  cmd.add_option("--relocalize-accept", config.options.association.accept_explained,
+                  "The relocalising search stops at the first pose that explains this fraction of the scan (0: it "
+                  "searches to its bound and keeps the best)")
+      ->check(within(0.0, 1.0))
+      ->capture_default_str();
   cmd.add_option("--out", config.out_dir, "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
       ->required();
 }

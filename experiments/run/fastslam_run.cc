@@ -119,6 +119,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"provisional_scans", config.options.provisional_scans},
                  {"relocalize", config.options.relocalize},
                  {"relocalize_min_pairings", config.options.relocalize_min_pairings},
+                 {"relocalize_accept", config.options.association.accept_explained},
                  {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
                  {"likelihood", std::string(to_string(config.options.likelihood))},
                  {"student_dof", config.options.student_dof},

@@ -37,7 +37,10 @@ class TreeSearch {
         n_(static_cast<int>(problem.candidates.size())),
         signatures_(std::isfinite(problem.signature_sigma) && problem.signature_sigma > 0.0),
         joint_(problem.joint_covariance.size() > 0),
-        ranking_(settings.check_prior ? kTreeHypothesesVerified : kTreeHypothesesVerifiedPoseFree) {}
+        ranking_(settings.check_prior ? kTreeHypothesesVerified : kTreeHypothesesVerifiedPoseFree),
+        accept_count_(settings.check_prior || !(settings.accept_explained > 0.0)
+                          ? 0
+                          : std::max(kTreeMinAccepted, static_cast<int>(std::ceil(settings.accept_explained * m_)))) {}
 
   void prepare() {
     canonical_measurement_order(p_, &s_.order);
@@ -101,7 +104,7 @@ class TreeSearch {
       return;
     }
     for (const TreeScratch::Anchor& a : s_.anchors) {
-      if (stats_->budget_exhausted || !can_enter(1 + a.reach)) break;
+      if (stopped() || !can_enter(1 + a.reach)) break;
       branch(a.k, 0, a.g);
     }
   }
@@ -115,19 +118,19 @@ class TreeSearch {
     if (!can_enter(depth + optimistic_extra(k, depth))) return;
     if (can_enter(depth + 1 + left)) {
       if (depth == 0 && set_.check_prior) {
-        for (int e = s_.prior_begin[k]; e < s_.prior_begin[k + 1] && !stats_->budget_exhausted; ++e)
+        for (int e = s_.prior_begin[k]; e < s_.prior_begin[k + 1] && !stopped(); ++e)
           branch(k, depth, s_.prior_list[e]);
       } else if (!set_.use_locality || depth == 0) {
-        for (int g = 0; g < n_ && !stats_->budget_exhausted; ++g) branch(k, depth, g);
+        for (int g = 0; g < n_ && !stopped(); ++g) branch(k, depth, g);
       } else {
         // allowed[depth] is stable while deeper levels rewrite allowed[depth + 1 ..].
-        for (std::size_t e = 0; e < s_.allowed[depth].size() && !stats_->budget_exhausted; ++e) {
+        for (std::size_t e = 0; e < s_.allowed[depth].size() && !stopped(); ++e) {
           const int g = s_.allowed[depth][e];
           if (!s_.used[g] && level_open(s_.open_levels[depth].data() + e * words_, k))
             pair(k, depth, g, static_cast<int>(e));
         }
       }
-      if (stats_->budget_exhausted) return;
+      if (stopped()) return;
     }
     if (can_enter(depth + left)) search(k + 1, depth);
   }
@@ -149,7 +152,6 @@ class TreeSearch {
     }
     // Each verified hypothesis is completed with its pose; the one whose pose explains the most measurements
     // wins (ties: rank order). A wrong pose that happens to fit a few features explains little else.
-    index_by_x();
     std::vector<int> accepted;
     Pose2 pose;
     int best_count = -1;
@@ -339,6 +341,10 @@ class TreeSearch {
     }
     return true;
   }
+
+  // The search ends at its budget, or (pose-free, TreeSettings::accept_explained) at a pose that explains
+  // enough of the scan.
+  bool stopped() const { return stats_->budget_exhausted || accepted_; }
 
   bool can_enter(int pairings) const {
     if (pairings < kTreeMinPairings) return false;
@@ -571,6 +577,12 @@ class TreeSearch {
       s_.ranked_pose.pop_back();
       s_.ranked_pairings.pop_back();
     }
+    if (accept_count_ > 0 && at < ranking_) {
+      std::vector<int>& h = s_.accept_trial;
+      h = s_.current;
+      complete(&h, &pose);
+      accepted_ = std::count_if(h.begin(), h.end(), [](int j) { return j >= 0; }) >= accept_count_;
+    }
   }
 
   // Pose from the pairings (closed form), then the joint test of the world-frame residuals
@@ -605,6 +617,7 @@ class TreeSearch {
   // complete()'s index: the candidates by world x, and the widest candidate covariance trace. A candidate
   // without a finite position could never pass the gate, so it is left out (and cannot upset the sort).
   void index_by_x() {
+    indexed_by_x_ = true;
     s_.by_x.clear();
     widest_candidate_trace_ = 0.0;
     for (int j = 0; j < n_; ++j) {
@@ -623,11 +636,13 @@ class TreeSearch {
     const double c = std::cos(pose->theta), s = std::sin(pose->theta);
     Mat2 rot;
     rot << c, -s, s, c;
+    if (!indexed_by_x_) index_by_x();
     s_.gating.near_any.assign(m_, 0);
     s_.gating.pairs.clear();
-    std::fill(s_.used.begin(), s_.used.end(), 0);
+    // Its own flags, cleared after use: during the search (early acceptance) s_.used holds the search's state.
+    s_.taken.resize(n_, 0);
     for (int k = 0; k < m_; ++k)
-      if ((*h)[k] >= 0) s_.used[(*h)[k]] = 1;
+      if ((*h)[k] >= 0) s_.taken[(*h)[k]] = 1;
     std::vector<char> near_level(m_, 0);
     const double widest_gate = std::max(set_.new_landmark_gate, set_.gate2);
     for (int k = 0; k < m_; ++k) {
@@ -649,11 +664,15 @@ class TreeSearch {
         if (!invert_spd2(cov_w + s_.position_cov[j], &inverse)) continue;
         const double d2 = r.dot(inverse * r);
         if (d2 <= set_.new_landmark_gate) near_level[k] = 1;
-        if ((*h)[k] < 0 && !s_.used[j] && d2 <= set_.gate2) s_.gating.pairs.push_back({d2, k, j});
+        if ((*h)[k] < 0 && !s_.taken[j] && d2 <= set_.gate2) s_.gating.pairs.push_back({d2, k, j});
       }
     }
     for (int k = 0; k < m_; ++k) s_.gating.near_any[s_.order[k]] = near_level[k];
-    if (s_.gating.pairs.empty()) return;
+    if (s_.gating.pairs.empty()) {
+      for (int k = 0; k < m_; ++k)
+        if ((*h)[k] >= 0) s_.taken[(*h)[k]] = 0;
+      return;
+    }
     auto& pairs = s_.gating.pairs;
     std::sort(pairs.begin(), pairs.end(), [&](const GatedPair& a, const GatedPair& b) {
       if (a.d2 != b.d2) return a.d2 < b.d2;
@@ -663,10 +682,12 @@ class TreeSearch {
     });
     std::vector<int> extended = *h;
     for (const GatedPair& g : pairs) {
-      if (extended[g.measurement] >= 0 || s_.used[g.candidate]) continue;
+      if (extended[g.measurement] >= 0 || s_.taken[g.candidate]) continue;
       extended[g.measurement] = g.candidate;
-      s_.used[g.candidate] = 1;
+      s_.taken[g.candidate] = 1;
     }
+    for (int k = 0; k < m_; ++k)
+      if (extended[k] >= 0) s_.taken[extended[k]] = 0;
     Pose2 refit;
     if (verify(extended, &refit)) {
       *h = std::move(extended);
@@ -685,6 +706,9 @@ class TreeSearch {
   bool indexed_ = false;  // the root's anchors come from index_anchors()
   int words_ = 1;         // 64-bit words per level mask
   int ranking_;           // verified hypotheses kept
+  int accept_count_;      // pose-free: measurements a completed pose must explain to end the search (0: never)
+  bool accepted_ = false;
+  bool indexed_by_x_ = false;  // s_.by_x holds this problem's candidates
   double widest_candidate_trace_ = 0.0;  // set by index_by_x()
 };
 

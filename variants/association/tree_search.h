@@ -76,6 +76,8 @@ struct TreeScratch {
   // candidates within its widest gate; scanning the whole map for each of 32 verified hypotheses was a
   // quarter of a pose-free search at n = 10^4.
   std::vector<std::pair<double, int>> by_x;
+  std::vector<char> taken;                   // the completion's candidate flags, all 0 between calls
+  std::vector<int> accept_trial;             // a verified hypothesis completed during the search
 };
 
 struct TreeSettings {
@@ -90,6 +92,7 @@ struct TreeSettings {
   double binary_gate = 0.0;        // chi2(gate_probability, 1) for distances and signatures
   std::int64_t max_hypotheses = 0;
   std::int64_t max_work = 0;  // AssociationOptions::max_work: compatibility tests count kTreeTestWork each
+  double accept_explained = 0.0;  // AssociationOptions::accept_explained (pose-free searches only)
 };
 
 // The work a compatibility test counts against TreeSettings::max_work: about its multiply-adds.
@@ -103,6 +106,8 @@ inline constexpr int kTreeHypothesesVerified = 8;
 inline constexpr int kTreeHypothesesVerifiedPoseFree = 32;
 // A hypothesis needs two pairings to fix a pose, so fewer are never accepted.
 inline constexpr int kTreeMinPairings = 2;
+// Early acceptance (TreeSettings::accept_explained) needs at least one measurement more than fixes the pose.
+inline constexpr int kTreeMinAccepted = kTreeMinPairings + 1;
 
 // Fills result. stats.hypotheses counts distinct pairing sets visited: 1 (the empty one) plus one per pairing
 // node of the tree (a '*' branch changes no set). For the locality search this never exceeds

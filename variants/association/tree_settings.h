@@ -21,6 +21,7 @@ inline TreeSettings make_tree_settings(const AssociationOptions& options, bool u
   s.new_landmark_gate = chi_square_quantile(options.new_landmark_probability, 2);
   s.max_hypotheses = options.max_hypotheses;
   s.max_work = options.max_work;
+  s.accept_explained = options.accept_explained;
   return s;
 }
 
