@@ -267,19 +267,17 @@ class TreeSearch {
     s_.anchor_levels.assign(static_cast<std::size_t>(m_) * n_, 0);
     s_.anchor_features.assign(static_cast<std::size_t>(m_) * n_, 0);
     s_.edge_distance.resize(s_.loc.size());
-    s_.edge_variance.resize(s_.loc.size());
     for (int g = 0; g < n_; ++g) {
       for (int e = s_.loc_begin[g]; e < s_.loc_begin[g + 1]; ++e) {
         const int h = s_.loc[e];
-        const Vec2 dm = s_.position[g] - s_.position[h];
-        const double lm = s_.edge_distance[e] = dm.norm();
-        const double map_variance = s_.edge_variance[e] = feature_distance_variance(g, h, dm, lm);
+        const TreeScratch::MapDistance map = s_.edge_distance[e] = map_distance(g, h);
+        const double lm = map.distance;
         auto it = std::lower_bound(s_.level_pairs.begin(), s_.level_pairs.end(), lm - reach,
                                    [](const auto& pair, double v) { return pair.distance < v; });
         for (; it != s_.level_pairs.end() && it->distance <= lm + reach; ++it) {
           ++stats_->tests;
           // binary(k, g, l, h), its terms computed once per measured pair and once per feature pair.
-          if (!distances_match(*it, lm, map_variance)) continue;
+          if (!distances_match(*it, map)) continue;
           if (unary(it->k, g) && unary(it->l, h)) {
             s_.anchor_levels[static_cast<std::size_t>(g) * m_ + it->k] |= std::uint64_t{1} << it->l;
             s_.anchor_features[static_cast<std::size_t>(g) * m_ + it->k] |= std::uint64_t{1} << (e - s_.loc_begin[g]);
@@ -364,10 +362,7 @@ class TreeSearch {
   // sum of both point covariances projected on the measured direction and both landmark covariances
   // projected on the map direction (first order).
   bool binary(int ka, int f, int kb, int g) const {
-    const LevelPair measured = measured_pair(ka, kb);
-    const Vec2 dm = s_.position[f] - s_.position[g];
-    const double lm = dm.norm();
-    return distances_match(measured, lm, feature_distance_variance(f, g, dm, lm));
+    return distances_match(measured_pair(ka, kb), map_distance(f, g));
   }
 
   // Levels ka < kb: their measured distance, from the table when the anchor index built one.
@@ -375,22 +370,25 @@ class TreeSearch {
     return indexed_ ? s_.level_table[static_cast<std::size_t>(ka) * m_ + kb] : level_pair(ka, kb);
   }
 
-  // The map side of binary(ka, f, kb, h) for members a (feature f) and b (feature h) of the anchor's
-  // locality of size c: computed once per anchor.
-  const std::pair<double, double>& anchor_pair(int a, int b, std::size_t c, int f, int h) {
-    std::pair<double, double>& cached = s_.anchor_pairs[static_cast<std::size_t>(a) * c + b];
-    if (std::isnan(cached.first)) {
-      const Vec2 dm = s_.position[f] - s_.position[h];
-      const double lm = dm.norm();
-      cached = {lm, feature_distance_variance(f, h, dm, lm)};
-    }
+  // The map side of binary(ka, f, kb, h): the distance of features f and h and its variance.
+  TreeScratch::MapDistance map_distance(int f, int h) const {
+    const Vec2 dm = s_.position[f] - s_.position[h];
+    const double lm = dm.norm();
+    return {lm, feature_distance_variance(f, h, dm, lm)};
+  }
+
+  // map_distance(f, h) for members a (feature f) and b (feature h) of the anchor's locality of size c:
+  // computed once per anchor.
+  const TreeScratch::MapDistance& anchor_pair(int a, int b, std::size_t c, int f, int h) {
+    TreeScratch::MapDistance& cached = s_.anchor_pairs[static_cast<std::size_t>(a) * c + b];
+    if (std::isnan(cached.distance)) cached = map_distance(f, h);
     return cached;
   }
 
-  // The binary gate on a measured distance and a map distance lm with its variance.
-  bool distances_match(const LevelPair& measured, double lm, double map_variance) const {
-    const double d = measured.distance - lm;
-    return d * d <= set_.binary_gate * (measured.variance + map_variance);
+  // The binary gate on a measured distance and a map distance.
+  bool distances_match(const LevelPair& measured, const TreeScratch::MapDistance& map) const {
+    const double d = measured.distance - map.distance;
+    return d * d <= set_.binary_gate * (measured.variance + map.variance);
   }
 
   // The measured distance of levels ka and kb and its variance, with the floor that keeps exact problems
@@ -473,8 +471,7 @@ class TreeSearch {
           if (set_.check_prior && !s_.prior_ok[static_cast<std::size_t>(l) * n_ + *h]) continue;
           ++stats_->tests;
           // binary(k, g, l, h); the anchor index holds the map side of the pair g, h.
-          const bool fits = indexed_ ? distances_match(s_.level_table[static_cast<std::size_t>(k) * m_ + l],
-                                                       s_.edge_distance[edge], s_.edge_variance[edge])
+          const bool fits = indexed_ ? distances_match(measured_pair(k, l), s_.edge_distance[edge])
                                      : binary(k, g, l, *h);
           if (unary(l, *h) && fits) mask[l / 64] |= std::uint64_t{1} << (l % 64);
         }
@@ -492,7 +489,7 @@ class TreeSearch {
       next.push_back(h);
       for (int w = 0; w < words_; ++w) masks.push_back(0);
       std::uint64_t* mask = masks.data() + masks.size() - words_;
-      const std::pair<double, double>* map_pair = nullptr;
+      const TreeScratch::MapDistance* map_pair = nullptr;
       for (int w = k / 64; w < words_; ++w) {
         std::uint64_t bits = parent[w];
         if (w == k / 64) bits &= k % 64 == 63 ? 0 : ~std::uint64_t{0} << (k % 64 + 1);
@@ -504,7 +501,7 @@ class TreeSearch {
             continue;
           }
           if (map_pair == nullptr) map_pair = &anchor_pair(slot, static_cast<int>(i), open.size(), g, h);
-          if (distances_match(measured_pair(k, l), map_pair->first, map_pair->second))
+          if (distances_match(measured_pair(k, l), *map_pair))
             mask[w] |= std::uint64_t{1} << (l % 64);
         }
       }
@@ -669,8 +666,7 @@ class TreeSearch {
     }
     for (int k = 0; k < m_; ++k) s_.gating.near_any[s_.order[k]] = near_level[k];
     if (s_.gating.pairs.empty()) {
-      for (int k = 0; k < m_; ++k)
-        if ((*h)[k] >= 0) s_.taken[(*h)[k]] = 0;
+      release(*h);
       return;
     }
     auto& pairs = s_.gating.pairs;
@@ -686,13 +682,18 @@ class TreeSearch {
       extended[g.measurement] = g.candidate;
       s_.taken[g.candidate] = 1;
     }
-    for (int k = 0; k < m_; ++k)
-      if (extended[k] >= 0) s_.taken[extended[k]] = 0;
+    release(extended);
     Pose2 refit;
     if (verify(extended, &refit)) {
       *h = std::move(extended);
       *pose = refit;
     }
+  }
+
+  // Clears complete()'s flags of the candidates a hypothesis pairs.
+  void release(const std::vector<int>& h) {
+    for (int k = 0; k < m_; ++k)
+      if (h[k] >= 0) s_.taken[h[k]] = 0;
   }
 
   const AssociationProblem& p_;

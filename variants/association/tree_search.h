@@ -65,13 +65,18 @@ struct TreeScratch {
   };
   std::vector<LevelPair> level_pairs;
   std::vector<LevelPair> level_table;  // level_table[k * m + l], k < l: the same pairs by level
-  // Per locality entry loc[e] of candidate g: the map distance |m_g - m_h| and its variance, computed once by
-  // the anchor index and read again by the anchors' first binary tests.
-  std::vector<double> edge_distance, edge_variance;
+  // A map distance |m_f - m_h| and its variance (as binary() projects it).
+  struct MapDistance {
+    double distance;
+    double variance;
+  };
+  // Per locality entry loc[e] of candidate g: the map distance of g and loc[e], computed once by the anchor
+  // index and read again by the anchors' first binary tests.
+  std::vector<MapDistance> edge_distance;
   // Below an anchor (one paired feature, the open set its locality): anchor_pairs[a * c + b] holds the map
-  // distance and its variance of locality members a and b, computed at their first binary test (NaN before),
-  // since every deeper node tests the same few pairs again at other levels.
-  std::vector<std::pair<double, double>> anchor_pairs;
+  // distance of locality members a and b, computed at their first binary test (NaN before), since every
+  // deeper node tests the same few pairs again at other levels.
+  std::vector<MapDistance> anchor_pairs;
   // The completion's spatial index: (world x, candidate) by x, so that each measurement examines only the
   // candidates within its widest gate; scanning the whole map for each of 32 verified hypotheses was a
   // quarter of a pose-free search at n = 10^4.
