@@ -92,6 +92,13 @@ struct AssociationOptions {
   // this fraction of the scan's measurements (and at least 3 of them), like a relocaliser that accepts the
   // first pose with enough inliers. 0: search to the bound, then pick the best of the ranked poses.
   double accept_explained = 0.0;
+  // Pose-free tree search: when the winner explains less than this fraction of the scan and the ranking of
+  // verified hypotheses cut the search short, search again keeping kTreeWideningFactor times as many
+  // (variants/association/tree_search.h gives the figures). 0: never.
+  double widen_below = 0.5;
+  // Pose-free tree search: pair the whole scan again at each verified pose, gated with that pose's fitted
+  // covariance, and keep that answer where it pairs as many and passes the joint test.
+  bool pair_again_at_pose = true;
 };
 
 // What a strategy is and promises. The one strategy list (variants/association/strategy_list.h) is filtered

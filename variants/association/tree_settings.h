@@ -22,6 +22,8 @@ inline TreeSettings make_tree_settings(const AssociationOptions& options, bool u
   s.max_hypotheses = options.max_hypotheses;
   s.max_work = options.max_work;
   s.accept_explained = options.accept_explained;
+  s.widen_below = options.widen_below;
+  s.pair_again_at_pose = options.pair_again_at_pose;
   return s;
 }
 
