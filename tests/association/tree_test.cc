@@ -29,6 +29,19 @@ int max_locality(const AssociationProblem& p) {
   return c;
 }
 
+// A kidnapped robot's problem: the prior is far off, and the pose-free trees never read it.
+GeneratedProblem kidnapped_problem(std::uint64_t seed, int landmarks, int observations, int clutter,
+                                   int locality = LocalitySet::kCapacity) {
+  return generate_association_problem({
+      .landmarks = landmarks,
+      .observations = observations,
+      .clutter = clutter,
+      .seed = seed,
+      .pose_sigma = Vec3(5.0, 5.0, 1.0),
+      .locality = locality,
+  });
+}
+
 TEST(LocalityTree, BoundFormula) {
   EXPECT_DOUBLE_EQ(association::locality_hypothesis_bound(10, 1, 3), 11.0);          // n + 1
   EXPECT_DOUBLE_EQ(association::locality_hypothesis_bound(10, 2, 3), 10 * 5 + 1.0);  // n (c + 2) + 1
@@ -83,14 +96,7 @@ TEST(LocalityTree, WithFullLocalitiesEqualsTheUnrestrictedTree) {
 TEST(LocalityTree, FindsTheTruePairingWithoutAPosePrior) {
   int good = 0, total = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
-    ProblemGeneratorOptions g{
-        .landmarks = 150,
-        .observations = 8,
-        .clutter = 2,
-        .seed = seed,
-        .pose_sigma = Vec3(5.0, 5.0, 1.0),  // the prior is far off; the tree never reads it
-    };
-    const GeneratedProblem gen = generate_association_problem(g);
+    const GeneratedProblem gen = kidnapped_problem(seed, 150, 8, 2);
     LocalityTree tree{AssociationOptions{}};
     LocalityTree::Scratch scratch;
     AssociationResult r;
@@ -113,14 +119,7 @@ TEST(LocalityTree, EarlyAcceptanceStopsSoonerAtTheSamePose) {
   std::int64_t nodes_exhaustive = 0, nodes_accepting = 0;
   int same_pose = 0, total = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
-    ProblemGeneratorOptions g{
-        .landmarks = 1000,
-        .observations = 10,
-        .clutter = 2,
-        .seed = seed,
-        .pose_sigma = Vec3(5.0, 5.0, 1.0),
-    };
-    const GeneratedProblem gen = generate_association_problem(g);
+    const GeneratedProblem gen = kidnapped_problem(seed, 1000, 10, 2);
     AssociationOptions accepting;
     accepting.accept_explained = 0.8;
     Pose2 pose[2];
@@ -153,15 +152,8 @@ TEST(LocalityTree, EarlyAcceptanceStopsSoonerAtTheSamePose) {
 TEST(LocalityTree, WideningRecoversWhereTheRankingCrowdedTheTruthOut) {
   int relocalised[2] = {0, 0}, widened = 0, total = 0;
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-    ProblemGeneratorOptions g{
-        .landmarks = 3000,
-        .observations = 10,
-        .clutter = 4,
-        .seed = seed,
-        .pose_sigma = Vec3(5.0, 5.0, 1.0),
-        .locality = 3,  // small localities: the truth's anchors reach few levels, coincidences crowd it out
-    };
-    const GeneratedProblem gen = generate_association_problem(g);
+    // Small localities: the truth's anchors reach few levels, and coincidences crowd it out.
+    const GeneratedProblem gen = kidnapped_problem(seed, 3000, 10, 4, 3);
     AssociationOptions single;
     single.widen_below = 0.0;
     AssociationResult r[2];

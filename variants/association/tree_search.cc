@@ -68,12 +68,7 @@ class TreeSearch {
       for (int j = 0; j < n_; ++j) range_bearing_inverse(origin, p_.candidates[j].z_hat, &s_.jacobian[j]);
     }
     index_ids();
-    s_.used.assign(n_, 0);
-    s_.current.assign(m_, -1);
-    s_.paired_level.assign(m_, -1);
-    s_.ranked.clear();
-    s_.ranked_pairings.clear();
-    s_.ranked_pose.clear();
+    reset_search();
     if (set_.check_prior) restrict_to_prior();
     if (!set_.use_locality) return;
     // Locality sets hold ids; the search needs candidate indices (candidates are sorted by id).
@@ -209,6 +204,12 @@ class TreeSearch {
     ranking_ *= kTreeWideningFactor;
     accepted_ = false;
     pruned_ = false;
+    reset_search();
+  }
+
+ private:
+  // The search's state before its first node: nothing paired, nothing ranked.
+  void reset_search() {
     s_.used.assign(n_, 0);
     s_.current.assign(m_, -1);
     s_.paired_level.assign(m_, -1);
@@ -217,7 +218,6 @@ class TreeSearch {
     s_.ranked_pose.clear();
   }
 
- private:
   int index_of(LandmarkId id) const {
     if (!s_.index_by_id.empty()) {
       const LandmarkId e = id - p_.candidates.front().id;
