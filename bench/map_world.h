@@ -19,6 +19,7 @@
 #include "core/engine/rng.h"
 #include "core/types/scenario.h"
 #include "core/models/range_bearing_model.h"
+#include "experiments/sim/survey.h"
 
 namespace arbor::bench {
 
@@ -57,13 +58,8 @@ inline std::vector<Landmark> make_landmark_field(std::int64_t n, std::uint64_t s
     lm.log_odds = 1.0f;
     lm.confirmed = true;
   }
-  auto strip = [&](const Landmark& lm) { return static_cast<std::int64_t>((lm.mean.y() + side / 2) / kStripWidthM); };
-  std::sort(field.begin(), field.end(), [&](const Landmark& a, const Landmark& b) {
-    const std::int64_t sa = strip(a), sb = strip(b);
-    if (sa != sb) return sa < sb;
-    return (sa % 2 == 0) ? a.mean.x() < b.mean.x() : a.mean.x() > b.mean.x();
-  });
-  for (std::int64_t i = 0; i < n; ++i) field[i].id = field[i].truth_label = static_cast<LandmarkId>(i);
+  number_in_strips(field, kStripWidthM, -side / 2);
+  for (Landmark& lm : field) lm.truth_label = static_cast<std::int32_t>(lm.id);
   return field;
 }
 

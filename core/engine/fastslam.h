@@ -143,6 +143,7 @@ class FastSlam {
   // landmark's truth_label is the ground-truth id that refers to it. Prior landmarks are taken as they are:
   // mark them confirmed, or an unknown-association filter will drop them as unconfirmed.
   void set_prior_map(const Map& map) {
+    ARBOR_CHECK(step_index_ == 0, "a prior map is set before the first step, not at step {}", step_index_);
     LandmarkId next = 0;
     map.for_each([&](const Landmark& lm) { next = std::max(next, lm.id + 1); });
     for (auto& p : particles_) {

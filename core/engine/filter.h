@@ -19,6 +19,8 @@ class Filter {
  public:
   virtual ~Filter() = default;
   virtual void step(const ScenarioStep& step) = 0;
+  // Before the first step: every particle starts from this map (unique ids; FastSlam::set_prior_map).
+  virtual void set_prior_map(const std::vector<Landmark>& landmarks) = 0;
   virtual const StepStats& last_step_stats() const = 0;
   virtual PoseEstimate estimate() const = 0;
   // Every particle's pose (between scans, the mean it predicts) and normalised weight, in particle order.
@@ -46,6 +48,11 @@ class FilterImpl final : public Filter {
       : engine_(scenario, options, std::move(relocalizer)) {}
 
   void step(const ScenarioStep& step) override { engine_.step(step); }
+  void set_prior_map(const std::vector<Landmark>& landmarks) override {
+    Map map;
+    for (const Landmark& lm : landmarks) map.insert(lm);
+    engine_.set_prior_map(map);
+  }
   const StepStats& last_step_stats() const override { return engine_.last_step_stats(); }
   PoseEstimate estimate() const override { return engine_.estimate(); }
   std::vector<WeightedPose> particles() const override {

@@ -23,6 +23,7 @@ enum class RandomPurpose : std::uint32_t {
   kSimulation = 4,
   kWorld = 5,
   kProblem = 6,
+  kSurvey = 7,
 };
 
 class RandomStream {

@@ -2,10 +2,14 @@
 #include "core/io/trajectory_io.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_set>
 
 #include <fmt/core.h>
 
 #include "core/io/atomic_file.h"
+#include "core/io/input_error.h"
 #include "core/io/text_reader.h"
 
 namespace arbor {
@@ -59,15 +63,27 @@ std::vector<Landmark> read_map_csv(const std::string& path) {
   TextReader in(path, ",");
   std::vector<Landmark> out;
   if (!in.next() || in.field(0) != "id") throw InputError(path, in.line_number(), "header", "expected the map.csv header");
+  std::unordered_set<LandmarkId> ids;
   while (in.next()) {
     in.expect_fields(9, 9, "map.csv");
     Landmark lm;
-    lm.id = static_cast<LandmarkId>(in.integer(0, "id"));
+    const std::int64_t id = in.integer(0, "id");
+    if (id < 0 || id > std::numeric_limits<LandmarkId>::max()) in.fail("id", fmt::format("{} is not a landmark id (0 to 2^31 - 1)", id));
+    lm.id = static_cast<LandmarkId>(id);
+    if (!ids.insert(lm.id).second) in.fail("id", fmt::format("landmark {} appears twice", id));
     lm.mean = {in.number(1, "x"), in.number(2, "y")};
     lm.cov << in.number(3, "cov_xx"), in.number(4, "cov_xy"), in.number(4, "cov_xy"), in.number(5, "cov_yy");
+    // A landmark's covariance must be positive definite: every update inverts it (through S = H P H^T + R).
+    if (!(lm.cov(0, 0) > 0.0)) in.fail("cov_xx", "must be > 0");
+    if (!(lm.cov(1, 1) > 0.0)) in.fail("cov_yy", "must be > 0");
+    if (!(lm.cov(0, 0) * lm.cov(1, 1) - lm.cov(0, 1) * lm.cov(0, 1) > 0.0))
+      in.fail("cov_xy", "the covariance is not positive definite (cov_xy^2 >= cov_xx * cov_yy)");
     lm.log_odds = static_cast<float>(in.number(6, "log_odds"));
+    if (!std::isfinite(lm.log_odds)) in.fail("log_odds", "out of float range");
     if (!in.field(7).empty()) lm.signature = static_cast<float>(in.number(7, "signature"));
-    lm.truth_label = static_cast<std::int32_t>(in.integer(8, "truth_label"));
+    const std::int64_t label = in.integer(8, "truth_label");
+    if (label < -1 || label > std::numeric_limits<std::int32_t>::max()) in.fail("truth_label", "must be -1 (none) or a true id");
+    lm.truth_label = static_cast<std::int32_t>(label);
     out.push_back(lm);
   }
   return out;

@@ -19,6 +19,8 @@ std::vector<TimedPose> read_tum(const std::string& path);
 // Header: id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label
 std::string format_map_csv(const std::vector<Landmark>& map);
 void write_map_csv(const std::string& path, const std::vector<Landmark>& map);
+// Throws InputError naming file, line and field: ids must be unique and in LandmarkId's range, covariances
+// positive definite, truth_label -1 or a true id.
 std::vector<Landmark> read_map_csv(const std::string& path);
 
 }  // namespace arbor

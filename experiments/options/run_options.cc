@@ -95,6 +95,10 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
                   "searches to its bound and keeps the best)")
       ->check(within(0.0, 1.0))
       ->capture_default_str();
+  cmd.add_option("--prior-map", config.prior_map_path,
+                  "Start every particle from this map (map.csv: a run's map, or `arbor simulate --survey-out`): "
+                  "localisation in a known map; its landmarks count as confirmed, new ones get ids above its largest")
+      ->check(CLI::ExistingFile);
   cmd.add_option("--out", config.out_dir, "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
       ->required();
 }

@@ -40,12 +40,24 @@ std::string steps_csv(const std::vector<StepRecord>& steps) {
   return out;
 }
 
+// A map a run starts from: every landmark confirmed (the filter reports only confirmed ones, and a known map
+// is not on probation), started at scan 0.
+std::vector<Landmark> read_prior_map(const std::string& path) {
+  std::vector<Landmark> map = read_map_csv(path);
+  for (Landmark& lm : map) {
+    lm.confirmed = true;
+    lm.born_scan = 0;
+  }
+  return map;
+}
+
 }  // namespace
 
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const auto wall_start = std::chrono::steady_clock::now();
   forget_finished_run(config.out_dir);
   std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
+  if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
   const int threads = config.options.threads > 0 ? config.options.threads : tbb::info::default_concurrency();
 
   RunOutput out;
@@ -103,6 +115,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
 
   Json& r = out.result;
   r["config"] = {{"scenario", config.scenario_path},
+                 {"prior_map", config.prior_map_path.empty() ? Json(nullptr) : Json(config.prior_map_path)},
                  {"filter", std::string(to_string(config.options.version))},
                  {"map", config.map},
                  {"assoc", config.assoc},

@@ -21,6 +21,7 @@ namespace arbor {
 
 struct RunConfig {
   std::string scenario_path;  // recorded in the result; the scenario itself is passed in
+  std::string prior_map_path;  // empty: no prior map; else a map.csv every particle starts from
   std::string map = "naive";
   std::string assoc = "known";
   FastSlamOptions options;

@@ -203,6 +203,21 @@ std::vector<HostileCase> hostile_cases() {
       {"reader_gaps", "hex_floats_are_numbers", scenario_edit(R"(^z [^ \n]+)", "z 0x1.4p+3"), kRun, 0, ""},
       {"reader_gaps", "a_directory_as_scenario", [](const fs::path& dir) { fs::create_directories(dir / "d.scn"); },
        "{arbor} run --scenario {dir}/d.scn --out {dir}/out", 2, "is a directory"},
+      // A prior map (`arbor run --prior-map`, map.csv) is read with the same care as a scenario.
+      {"reader_gaps", "prior_map_id_twice",
+       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n0,1,2,0.1,0,0.1,8,,0\n0,3,4,0.1,0,0.1,8,,1\n"),
+       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:3: field 'id'"},
+      {"reader_gaps", "prior_map_covariance_not_positive_definite",
+       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n0,1,2,0.1,0.2,0.1,8,,0\n"),
+       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'cov_xy'"},
+      {"reader_gaps", "prior_map_negative_id",
+       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n-3,1,2,0.1,0,0.1,8,,0\n"),
+       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'id'"},
+      {"reader_gaps", "prior_map_absent", no_setup, kRun + "--prior-map {dir}/none.csv", 2, "--prior-map"},
+      {"reader_gaps", "prior_map_surveyed", no_setup,
+       "{arbor} simulate --landmarks 20 --steps 8 --clutter 1 --out {dir}/w.scn --survey-out {dir}/m.csv >/dev/null && " +
+           kRun + "--assoc jcbb --prior-map {dir}/m.csv",
+       0, ""},
       // 8. Exit codes and messages.
       {"messages", "unwritable_out_exits_one", no_setup, "{arbor} simulate --landmarks 20 --steps 5 --out /proc/arbor_hostile.scn", 1,
        "/proc/arbor_hostile.scn"},
