@@ -1,6 +1,8 @@
 // Bounded field readers (see field_limits.h).
 #include "core/io/field_limits.h"
 
+#include <cstdint>
+
 #include <fmt/core.h>
 
 namespace arbor {
@@ -41,6 +43,12 @@ std::int64_t time_ms_field(const TextReader& in, std::size_t i, std::string_view
 
 double range_field(const TextReader& in, std::size_t i, std::string_view name) {
   return non_negative_within(in, i, name, lim::kMaxRange);
+}
+
+std::int32_t landmark_id_field(const TextReader& in, std::size_t i, std::string_view name) {
+  const std::int64_t id = in.integer(i, name);
+  if (id < 0 || id > INT32_MAX) in.fail(name, "landmark id must be a non-negative 32-bit integer");
+  return static_cast<std::int32_t>(id);
 }
 
 }  // namespace arbor

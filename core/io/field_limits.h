@@ -41,6 +41,8 @@ double control_field(const TextReader& in, std::size_t i, std::string_view name)
 // Integer milliseconds (Victoria Park's clock) within kMaxTime.
 std::int64_t time_ms_field(const TextReader& in, std::size_t i, std::string_view name);
 double range_field(const TextReader& in, std::size_t i, std::string_view name);       // [0, kMaxRange] m
+// A landmark id: a non-negative 32-bit integer.
+std::int32_t landmark_id_field(const TextReader& in, std::size_t i, std::string_view name);
 
 }  // namespace arbor
 

@@ -152,11 +152,10 @@ Scenario read_scenario(const std::string& path) {
       scan_line = in.line_number();
     } else if (kind == "landmark") {
       in.expect_fields(4, 4, "landmark");
-      const std::int64_t id = in.integer(1, "id");
-      if (id < 0 || id > INT32_MAX) in.fail("id", "landmark id must be a non-negative 32-bit integer");
-      const auto [first, inserted] = landmark_line.emplace(static_cast<std::int32_t>(id), in.line_number());
+      const std::int32_t id = landmark_id_field(in, 1, "id");
+      const auto [first, inserted] = landmark_line.emplace(id, in.line_number());
       if (!inserted) in.fail("id", fmt::format("landmark {} is listed twice (first at line {})", id, first->second));
-      s.truth_landmarks.push_back({static_cast<std::int32_t>(id), {coordinate_field(in, 2, "x"), coordinate_field(in, 3, "y")}});
+      s.truth_landmarks.push_back({id, {coordinate_field(in, 2, "x"), coordinate_field(in, 3, "y")}});
     } else if (kind == "gps") {
       in.expect_fields(4, 4, "gps");
       const double t = time_field(in, 1, "time");

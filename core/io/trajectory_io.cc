@@ -4,11 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_set>
+#include <unordered_map>
 
 #include <fmt/core.h>
 
 #include "core/io/atomic_file.h"
+#include "core/io/field_limits.h"
 #include "core/io/input_error.h"
 #include "core/io/text_reader.h"
 
@@ -63,15 +64,14 @@ std::vector<Landmark> read_map_csv(const std::string& path) {
   TextReader in(path, ",");
   std::vector<Landmark> out;
   if (!in.next() || in.field(0) != "id") throw InputError(path, in.line_number(), "header", "expected the map.csv header");
-  std::unordered_set<LandmarkId> ids;
+  std::unordered_map<LandmarkId, int> landmark_line;  // id -> the line that gave it
   while (in.next()) {
     in.expect_fields(9, 9, "map.csv");
     Landmark lm;
-    const std::int64_t id = in.integer(0, "id");
-    if (id < 0 || id > std::numeric_limits<LandmarkId>::max()) in.fail("id", fmt::format("{} is not a landmark id (0 to 2^31 - 1)", id));
-    lm.id = static_cast<LandmarkId>(id);
-    if (!ids.insert(lm.id).second) in.fail("id", fmt::format("landmark {} appears twice", id));
-    lm.mean = {in.number(1, "x"), in.number(2, "y")};
+    lm.id = landmark_id_field(in, 0, "id");
+    const auto [first, inserted] = landmark_line.emplace(lm.id, in.line_number());
+    if (!inserted) in.fail("id", fmt::format("landmark {} is listed twice (first at line {})", lm.id, first->second));
+    lm.mean = {coordinate_field(in, 1, "x"), coordinate_field(in, 2, "y")};
     lm.cov << in.number(3, "cov_xx"), in.number(4, "cov_xy"), in.number(4, "cov_xy"), in.number(5, "cov_yy");
     // A landmark's covariance must be positive definite: every update inverts it (through S = H P H^T + R).
     if (!(lm.cov(0, 0) > 0.0)) in.fail("cov_xx", "must be > 0");

@@ -213,6 +213,9 @@ std::vector<HostileCase> hostile_cases() {
       {"reader_gaps", "prior_map_negative_id",
        file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n-3,1,2,0.1,0,0.1,8,,0\n"),
        kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'id'"},
+      {"reader_gaps", "prior_map_coordinate_beyond_the_limits",
+       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n0,1e300,2,0.1,0,0.1,8,,0\n"),
+       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'x'"},
       {"reader_gaps", "prior_map_absent", no_setup, kRun + "--prior-map {dir}/none.csv", 2, "--prior-map"},
       {"reader_gaps", "prior_map_surveyed", no_setup,
        "{arbor} simulate --landmarks 20 --steps 8 --clutter 1 --out {dir}/w.scn --survey-out {dir}/m.csv >/dev/null && " +
