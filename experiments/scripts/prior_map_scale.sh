@@ -3,7 +3,7 @@
 # association, starting from a surveyed map of the whole world (`arbor simulate --survey-out`, uniform world,
 # 200 scans, seed 1) so that every step works in an N-landmark map. Per run result.json gives
 # step_time_median_s and peak_rss_bytes. Usage: prior_map_scale.sh OUT [ARBOR_BINARY]
-# (NS and MAPS override the sizes and back ends; about 15 min and 8 GB of disk for the default).
+# (NS and MAPS override the sizes and back ends; about 4 min and 3 GB of disk for the default).
 set -euo pipefail
 source "$(dirname "$0")/study_setup.sh"
 mkdir -p "$out"
