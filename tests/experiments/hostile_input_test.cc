@@ -95,6 +95,13 @@ const std::string kRun = kRunBase + "--particles 8 ";
 const std::string kSimulate = "{arbor} simulate --landmarks 20 --steps 5 --out {dir}/out/s.scn ";
 const std::string kIsam = "victoria_park/isam_gtsam/victoria_park.txt";
 
+// A prior map (`arbor run --prior-map`, map.csv) of these rows, refused with a message matching `message`.
+HostileCase bad_prior_map(std::string name, std::string rows, std::string message) {
+  return {"reader_gaps", std::move(name),
+          file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n" + std::move(rows)),
+          kRun + "--prior-map {dir}/m.csv", 2, std::move(message)};
+}
+
 std::vector<HostileCase> hostile_cases() {
   const std::string field_re = R"(:\d+: field ')";
   return {
@@ -204,18 +211,10 @@ std::vector<HostileCase> hostile_cases() {
       {"reader_gaps", "a_directory_as_scenario", [](const fs::path& dir) { fs::create_directories(dir / "d.scn"); },
        "{arbor} run --scenario {dir}/d.scn --out {dir}/out", 2, "is a directory"},
       // A prior map (`arbor run --prior-map`, map.csv) is read with the same care as a scenario.
-      {"reader_gaps", "prior_map_id_twice",
-       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n0,1,2,0.1,0,0.1,8,,0\n0,3,4,0.1,0,0.1,8,,1\n"),
-       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:3: field 'id'"},
-      {"reader_gaps", "prior_map_covariance_not_positive_definite",
-       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n0,1,2,0.1,0.2,0.1,8,,0\n"),
-       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'cov_xy'"},
-      {"reader_gaps", "prior_map_negative_id",
-       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n-3,1,2,0.1,0,0.1,8,,0\n"),
-       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'id'"},
-      {"reader_gaps", "prior_map_coordinate_beyond_the_limits",
-       file("m.csv", "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n0,1e300,2,0.1,0,0.1,8,,0\n"),
-       kRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'x'"},
+      bad_prior_map("prior_map_id_twice", "0,1,2,0.1,0,0.1,8,,0\n0,3,4,0.1,0,0.1,8,,1\n", "m.csv:3: field 'id'"),
+      bad_prior_map("prior_map_covariance_not_positive_definite", "0,1,2,0.1,0.2,0.1,8,,0\n", "m.csv:2: field 'cov_xy'"),
+      bad_prior_map("prior_map_negative_id", "-3,1,2,0.1,0,0.1,8,,0\n", "m.csv:2: field 'id'"),
+      bad_prior_map("prior_map_coordinate_beyond_the_limits", "0,1e300,2,0.1,0,0.1,8,,0\n", "m.csv:2: field 'x'"),
       {"reader_gaps", "prior_map_absent", no_setup, kRun + "--prior-map {dir}/none.csv", 2, "--prior-map"},
       {"reader_gaps", "prior_map_surveyed", no_setup,
        "{arbor} simulate --landmarks 20 --steps 8 --clutter 1 --out {dir}/w.scn --survey-out {dir}/m.csv >/dev/null && " +
