@@ -1,0 +1,117 @@
+"""Strategy over reference, with each world run under several filter seeds (filter_seeds.sh).
+
+For each csv after the reference: the ratio of mean SE(2)-aligned ATE to the reference's over the same runs,
+with a 95 % bootstrap interval over worlds (a world's runs are resampled together), the ratio on world seeds
+1-20 and 21-40 apart, and the ratio from the filter seed = world seed runs alone (what a one-seed-per-world
+study sees). With --profile OUT, also the mean position error of the best particle's trajectory every 25
+steps, which shows where in the run two strategies part, and per 100 steps the duplicates the best particle
+started (a landmark begun from a true landmark that already had one) and the share of its pairings of true
+landmarks that went to such a duplicate rather than to the first landmark of that true landmark.
+Usage: /usr/bin/python3 filter_seeds.py [--profile OUT] REF.csv OTHER.csv...
+"""
+import argparse
+import pathlib
+
+import numpy as np
+import pandas as pd
+
+COLUMNS = ["world_seed", "filter_seed", "ate_aligned", "ate", "f1", "nees_median"]
+
+
+def read(path):
+    return pd.read_csv(path, header=None, names=COLUMNS)
+
+
+def ratio(runs):
+    return runs.ate_aligned.mean() / runs.ate_aligned_ref.mean()
+
+
+def bootstrap(runs, draws=2000):
+    worlds = runs.groupby("world_seed")
+    per_world = worlds[["ate_aligned", "ate_aligned_ref"]].mean()
+    rng = np.random.default_rng(0)
+    values = [ratio(per_world.iloc[rng.integers(0, len(per_world), len(per_world))]) for _ in range(draws)]
+    return np.percentile(values, [2.5, 97.5])
+
+
+def truth_positions(scenario):
+    lines = scenario.read_text().splitlines()
+    start = next(line for line in lines if line.startswith("initial")).split()[2:4]
+    rest = [line.split()[1:3] for line in lines if line.startswith("truth")]
+    return np.array([start] + rest, dtype=float)
+
+
+def scan_labels(scenario):
+    """Per scan, the true landmark (or 'clutter') of each measurement."""
+    scans = []
+    for line in scenario.read_text().splitlines():
+        if line.startswith("scan"):
+            scans.append([])
+        elif line.startswith("z "):
+            scans[-1].append(line.split()[4])
+    return scans
+
+
+def duplicate_counts(run, scans, window=100):
+    """Per window of steps: [duplicates started, pairings with a duplicate, pairings with the original]."""
+    label, original = {}, {}
+    counts = np.zeros(((len(scans) - 1) // window + 1, 3), dtype=int)
+    for line in (run / "associations.csv").read_text().splitlines()[1:]:
+        step, measurement, landmark = map(int, line.split(","))
+        truth, row = scans[step][measurement], counts[step // window]
+        if landmark < 0 or truth == "clutter":
+            label.setdefault(landmark, truth)
+            continue
+        if landmark not in label:
+            label[landmark] = truth
+            row[0] += truth in original
+            original.setdefault(truth, landmark)
+        elif label[landmark] == truth:
+            row[1 if original[truth] != landmark else 2] += 1
+    return counts
+
+
+def error_profile(out, name):
+    """Mean position error per step over NAME's runs, their count, and their summed duplicate_counts."""
+    errors, duplicates = [], 0
+    world, clutter = name.rsplit("-", 2)[1:]  # csv stems are STRATEGY-WORLD-cC, runs STRATEGY-WORLD-cC-sS-fF
+    for run in sorted((out / "runs").glob(f"{name}-s*")):
+        seed = run.name[len(name) + 1:].split("-")[0]
+        scenario = out / "scenarios" / f"{world}-{clutter}-{seed}.scn"
+        path = np.loadtxt(run / "trajectory.tum")[:, 1:3]
+        errors.append(np.hypot(*(path - truth_positions(scenario)).T))
+        duplicates = duplicates + duplicate_counts(run, scan_labels(scenario))
+    return np.mean(errors, axis=0), len(errors), duplicates
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--profile", type=pathlib.Path)
+    parser.add_argument("ref")
+    parser.add_argument("others", nargs="+")
+    args = parser.parse_args()
+    ref = read(args.ref)
+    print("| strategy | runs | mean aligned ATE (m) | median | ratio to reference (95 % interval) "
+          "| worlds 1-20 | worlds 21-40 | filter seed = world seed only | F1 | NEES median |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for path in args.others:
+        runs = read(path).merge(ref, on=["world_seed", "filter_seed"], suffixes=("", "_ref"))
+        low, high = bootstrap(runs)
+        first, second = runs[runs.world_seed <= 20], runs[runs.world_seed > 20]
+        same = runs[runs.filter_seed == runs.world_seed]
+        print(f"| {pathlib.Path(path).stem} | {len(runs)} | {runs.ate_aligned.mean():.3f} | "
+              f"{runs.ate_aligned.median():.3f} | {ratio(runs):.2f} ({low:.2f}-{high:.2f}) | {ratio(first):.2f} | "
+              f"{ratio(second):.2f} | {ratio(same):.2f} | {runs.f1.mean():.4f} | {runs.nees_median.median():.0f} |")
+    if args.profile:
+        profiles = {pathlib.Path(p).stem: error_profile(args.profile, pathlib.Path(p).stem) for p in [args.ref] + args.others}
+        print("\nmean position error (m) of the best particle, every 25 steps")
+        for name, (profile, count, _) in profiles.items():
+            print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in profile[::25]))
+        print("\nper 100 steps: duplicates started per run / share of true pairings made with a duplicate")
+        for name, (_, count, dup) in profiles.items():
+            share = dup[:, 1] / np.maximum(dup[:, 1] + dup[:, 2], 1)
+            print(f"{name:28s} " + "  ".join(f"{d / count:.1f}/{s:.3f}" for d, s in zip(dup[:, 0], share)))
+
+
+if __name__ == "__main__":
+    main()
