@@ -4,7 +4,7 @@ For each csv after the reference: the ratio of mean SE(2)-aligned ATE to the ref
 with a 95 % bootstrap interval over worlds (a world's runs are resampled together), the ratio on world seeds
 1-20 and 21-40 apart, and the ratio from the filter seed = world seed runs alone (what a one-seed-per-world
 study sees). With --profile OUT, also the mean position error of the best particle's trajectory every 25
-steps, which shows where in the run two strategies part, and per 100 steps the duplicates the best particle
+steps, as it is and after the SE(2) alignment the ATE uses, which shows where in the run two strategies part, and per 100 steps the duplicates the best particle
 started (a landmark begun from a true landmark that already had one) and the share of its pairings of true
 landmarks that went to such a duplicate rather than to the first landmark of that true landmark.
 Usage: /usr/bin/python3 filter_seeds.py [--profile OUT] REF.csv OTHER.csv...
@@ -71,17 +71,28 @@ def duplicate_counts(run, scans, window=100):
     return counts
 
 
+def aligned(path, truth):
+    """path moved by the rotation and translation that best fit it to truth (least squares, Umeyama 1991)."""
+    p0, t0 = path.mean(axis=0), truth.mean(axis=0)
+    u, _, vt = np.linalg.svd((path - p0).T @ (truth - t0))
+    d = np.diag([1.0, np.sign(np.linalg.det(u @ vt))])
+    return (path - p0) @ (u @ d @ vt) + t0
+
+
 def error_profile(out, name):
-    """Mean position error per step over NAME's runs, their count, and their summed duplicate_counts."""
-    errors, duplicates = [], 0
+    """Mean position error per step over NAME's runs, unaligned and aligned, their count, and their summed
+    duplicate_counts."""
+    errors, errors_aligned, duplicates = [], [], 0
     world, clutter = name.rsplit("-", 2)[1:]  # csv stems are STRATEGY-WORLD-cC, runs STRATEGY-WORLD-cC-sS-fF
     for run in sorted((out / "runs").glob(f"{name}-s*")):
         seed = run.name[len(name) + 1:].split("-")[0]
         scenario = out / "scenarios" / f"{world}-{clutter}-{seed}.scn"
         path = np.loadtxt(run / "trajectory.tum")[:, 1:3]
-        errors.append(np.hypot(*(path - truth_positions(scenario)).T))
+        truth = truth_positions(scenario)
+        errors.append(np.hypot(*(path - truth).T))
+        errors_aligned.append(np.hypot(*(aligned(path, truth) - truth).T))
         duplicates = duplicates + duplicate_counts(run, scan_labels(scenario))
-    return np.mean(errors, axis=0), len(errors), duplicates
+    return np.mean(errors, axis=0), np.mean(errors_aligned, axis=0), len(errors), duplicates
 
 
 def main():
@@ -105,10 +116,13 @@ def main():
     if args.profile:
         profiles = {pathlib.Path(p).stem: error_profile(args.profile, pathlib.Path(p).stem) for p in [args.ref] + args.others}
         print("\nmean position error (m) of the best particle, every 25 steps")
-        for name, (profile, count, _) in profiles.items():
+        for name, (profile, _, count, _) in profiles.items():
+            print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in profile[::25]))
+        print("\nthe same after SE(2) alignment of each run")
+        for name, (_, profile, count, _) in profiles.items():
             print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in profile[::25]))
         print("\nper 100 steps: duplicates started per run / share of true pairings made with a duplicate")
-        for name, (_, count, dup) in profiles.items():
+        for name, (_, _, count, dup) in profiles.items():
             share = dup[:, 1] / np.maximum(dup[:, 1] + dup[:, 2], 1)
             print(f"{name:28s} " + "  ".join(f"{d / count:.1f}/{s:.3f}" for d, s in zip(dup[:, 0], share)))
 
