@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Association in clutter (issue 12), from the result.json files that experiments/scripts/clutter_study.sh
-writes under OUT/runs/<world>-c<clutter>-s<seed>-<strategy>/.
+writes under OUT/runs/<world>-c<clutter>-s<seed>[-f<filter seed>]-<strategy>/ (no -f: the filter seed is the
+world seed). A world run under several filter seeds counts once in every interval: its runs are averaged
+first, because the worlds, not the runs, are the independent samples.
 
-Per world, clutter rate and strategy (means over seeds): association F1 (scored from the recorded decisions),
+Per world, clutter rate and strategy (means over runs): association F1 (scored from the recorded decisions),
 ATE (also SE(2)-aligned) and the mean aligned ATE's ratio to known association's on the same scenarios, the confirmed map landmarks per true
 landmark the measurements observed, the confirmed landmarks without a true counterpart, and wall time.
 `jcbb_no_existence` is JCBB with every new landmark confirmed at once (the existence ablation);
@@ -34,7 +36,7 @@ from arbor_results import MIN_VALUES_FOR_CI, fmt_mean_ci, fmt_num, markdown_tabl
 from paired import difference  # noqa: E402
 
 STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
-RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)-(?P<strategy>[a-z_]+)"
+RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)(?:-f(?P<filter_seed>\d+))?-(?P<strategy>[a-z_]+)"
 FIELDS = {"assoc_f1": "f1", "ate_rmse_m": "ate_m", "ate_aligned_rmse_m": "ate_aligned_m", "landmarks": "landmarks",
           "observed_true_landmarks": "observed", "spurious_landmarks": "spurious", "wall_time_s": "wall_s"}
 
@@ -44,10 +46,14 @@ BOOTSTRAP_RESAMPLES = 10000
 
 def read_runs(out):
     if not os.path.isdir(os.path.join(out, "runs")) and os.path.exists(os.path.join(out, "clutter.csv")):
-        return pd.read_csv(os.path.join(out, "clutter.csv"))
+        df = pd.read_csv(os.path.join(out, "clutter.csv"))
+        if "filter_seed" not in df.columns:  # committed before studies had filter seeds
+            df.insert(df.columns.get_loc("seed") + 1, "filter_seed", df.seed)
+        return df
     df = read_study_runs(os.path.join(out, "runs", "*", "result.json"), RUN, list(FIELDS))
     if df.empty:
         return df
+    df["filter_seed"] = df.filter_seed.fillna(df.seed).astype(int)
     df = df.rename(columns=FIELDS)
     df["clutter"] = df["clutter"].astype(float)
     df["map_ratio"] = df.landmarks / df.observed
@@ -56,10 +62,11 @@ def read_runs(out):
 
 def paired(df, a, b, metrics=(("f1", "F1", True), ("ate_aligned_m", "aligned ATE (m)", False))):
     """Strategy a against b per world and clutter rate, paired by seed: a − b as mean ± 95 % CI (the values
-    themselves below 3 pairs) and the number of seeds on which a is ahead (higher F1, lower ATE)."""
+    themselves below 3 pairs) and the number of seeds on which a is ahead (higher F1, lower ATE). A seed's
+    value is the mean over the filter seeds both ran."""
     rows = []
     for (world, clutter), g in df.groupby(["world", "clutter"]):
-        both = g[g.strategy.isin([a, b])].pivot(index="seed", columns="strategy").dropna()
+        both = per_world(g, [a, b])
         if both.empty or a not in both.columns.get_level_values(1) or b not in both.columns.get_level_values(1):
             continue
         row = {"world": world, "clutter": clutter, "seeds": len(both)}
@@ -71,6 +78,16 @@ def paired(df, a, b, metrics=(("f1", "F1", True), ("ate_aligned_m", "aligned ATE
     return rows
 
 
+def per_world(g, strategies, metric=None):
+    """One row per world seed, a column per strategy (under each metric, or the one given): the mean over the
+    filter seeds that every listed strategy ran on that world."""
+    metrics = [m for m in ["f1", "ate_m", "ate_aligned_m", "map_ratio", "spurious", "wall_s"] if m in g.columns]
+    runs = g[g.strategy.isin(strategies)]
+    wide = runs.pivot(index=["seed", "filter_seed"], columns="strategy", values=metrics)
+    wide = (wide[metric] if metric else wide).dropna()
+    return wide.groupby(level="seed").mean()
+
+
 def ratio_to_known(df):
     """Per world, clutter rate and strategy: the ratio of mean aligned ATEs to known association's over the seeds
     both ran, and its 95 % percentile interval from resampling those seeds (the pair of runs of a seed stays
@@ -78,11 +95,10 @@ def ratio_to_known(df):
     rng = np.random.default_rng(1)
     rows = []
     for (world, clutter), g in df.groupby(["world", "clutter"]):
-        ate = g.pivot(index="seed", columns="strategy", values="ate_aligned_m")
-        if "known" not in ate.columns:
+        if "known" not in set(g.strategy):
             continue
-        for strategy in [s for s in STRATEGIES if s in ate.columns and s != "known"]:
-            both = ate[[strategy, "known"]].dropna()
+        for strategy in [s for s in STRATEGIES if s in set(g.strategy) and s != "known"]:
+            both = per_world(g, [strategy, "known"], "ate_aligned_m")
             a, k = both[strategy].to_numpy(), both["known"].to_numpy()
             interval = "–"
             if len(a) >= MIN_VALUES_FOR_CI:
@@ -102,7 +118,7 @@ def main(out):
         df.to_csv(os.path.join(out, "clutter.csv"), index=False)
     metrics = ["f1", "ate_m", "ate_aligned_m", "map_ratio", "spurious", "wall_s"]
     table = (df.groupby(["world", "clutter", "strategy"])
-               .agg(seeds=("seed", "count"), **{m: (m, "mean") for m in metrics})
+               .agg(seeds=("seed", "nunique"), **{m: (m, "mean") for m in metrics})
                .reset_index())
     # The unaligned ATE carries a rigid offset of the whole solution (the map's frame is fixed by the first
     # scans, each run one posterior sample of it) that varies several-fold between seeds, so the comparison
@@ -114,7 +130,9 @@ def main(out):
     table["order"] = table.strategy.map({s: i for i, s in enumerate(STRATEGIES)})
     table = table.sort_values(["world", "clutter", "order"]).drop(columns="order")
     with open(os.path.join(out, "clutter.md"), "w", encoding="utf-8") as f:
-        f.write("# Association in clutter: FastSLAM 2.0, 100 particles (means over seeds)\n\n")
+        f.write("# Association in clutter: FastSLAM 2.0, 100 particles (means over runs)\n\n")
+        f.write("seeds: the worlds (scenario seeds); where a study ran a world under several filter seeds, the "
+                "paired comparisons and intervals below average them first.\n\n")
         f.write("f1: association F1 from the recorded decisions; ate_m: ATE of the best particle; ate_aligned_m: "
                 "the same after SE(2) alignment; ate_vs_known: mean aligned ATE over known association's on the same "
                 "scenarios and seeds; map_ratio: confirmed landmarks per true landmark "
