@@ -28,6 +28,16 @@ class AnalysisScripts : public ::testing::Test {
                    << "python3-matplotlib): " << read_text(probe / "probe.log");
   }
   std::string fixture() const { return kSource + "/tests/data/results_fixture"; }
+  // One clutter_study.sh run: OUT/runs/NAME/result.json with the fields analysis/clutter.py reads.
+  static void write_clutter_run(const ScratchDir& out, const std::string& name, double ate_aligned, int landmarks = 100,
+                                int spurious = 0, double wall_s = 1.0) {
+    const std::filesystem::path dir = std::filesystem::path(out.str()) / "runs" / name;
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "result.json")
+        << "{\"assoc_f1\": 0.98, \"ate_rmse_m\": 1.0, \"ate_aligned_rmse_m\": " << ate_aligned << ", \"landmarks\": "
+        << landmarks << ", \"observed_true_landmarks\": 100, \"spurious_landmarks\": " << spurious
+        << ", \"wall_time_s\": " << wall_s << "}";
+  }
 };
 
 TEST_F(AnalysisScripts, ReportBuildsEveryFigureAndTableFromTheFixture) {
@@ -103,11 +113,7 @@ TEST_F(AnalysisScripts, RunOptionsSeparateConfigurationsAndLabelsNameTheirDimens
 TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
   ScratchDir out("clutter");
   const auto write_run = [&](const std::string& name, double ate_aligned, int landmarks) {
-    const std::filesystem::path dir = std::filesystem::path(out.str()) / "runs" / name;
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "result.json")
-        << "{\"assoc_f1\": 0.98, \"ate_rmse_m\": 1.0, \"ate_aligned_rmse_m\": " << ate_aligned << ", \"landmarks\": "
-        << landmarks << ", \"observed_true_landmarks\": 100, \"spurious_landmarks\": 2, \"wall_time_s\": 1.5}";
+    write_clutter_run(out, name, ate_aligned, landmarks, /*spurious=*/2, /*wall_s=*/1.5);
   };
   write_run("rooms-c2-s1-known", 0.2, 100);
   write_run("rooms-c2-s2-known", 0.4, 100);
@@ -131,13 +137,7 @@ TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
 // runs/, only its clutter.csv) renders the same tables.
 TEST_F(AnalysisScripts, ClutterRatioToKnownCarriesItsSeedInterval) {
   ScratchDir out("clutter_interval");
-  const auto write_run = [&](const std::string& name, double ate_aligned) {
-    const std::filesystem::path dir = std::filesystem::path(out.str()) / "runs" / name;
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "result.json")
-        << "{\"assoc_f1\": 0.98, \"ate_rmse_m\": 1.0, \"ate_aligned_rmse_m\": " << ate_aligned
-        << ", \"landmarks\": 100, \"observed_true_landmarks\": 100, \"spurious_landmarks\": 0, \"wall_time_s\": 1}";
-  };
+  const auto write_run = [&](const std::string& name, double ate_aligned) { write_clutter_run(out, name, ate_aligned); };
   for (int seed = 1; seed <= 3; ++seed) {
     write_run("rooms-c2-s" + std::to_string(seed) + "-known", 0.1 * seed);
     write_run("rooms-c2-s" + std::to_string(seed) + "-jcbb", 0.15 * seed);
@@ -160,13 +160,7 @@ TEST_F(AnalysisScripts, ClutterRatioToKnownCarriesItsSeedInterval) {
 // so each world's ratio is 1.5 and so is the whole interval; resampling the runs would widen it.
 TEST_F(AnalysisScripts, ClutterStudyAveragesAWorldsFilterSeedsBeforeItsInterval) {
   ScratchDir out("clutter_filter_seeds");
-  const auto write_run = [&](const std::string& name, double ate_aligned) {
-    const std::filesystem::path dir = std::filesystem::path(out.str()) / "runs" / name;
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "result.json")
-        << "{\"assoc_f1\": 0.98, \"ate_rmse_m\": 1.0, \"ate_aligned_rmse_m\": " << ate_aligned
-        << ", \"landmarks\": 100, \"observed_true_landmarks\": 100, \"spurious_landmarks\": 0, \"wall_time_s\": 1}";
-  };
+  const auto write_run = [&](const std::string& name, double ate_aligned) { write_clutter_run(out, name, ate_aligned); };
   for (int seed = 1; seed <= 3; ++seed) {
     const std::string world = "rooms-c2-s" + std::to_string(seed), other = "-f" + std::to_string(seed + 1000);
     write_run(world + "-known", 0.1 * seed);
