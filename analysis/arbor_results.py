@@ -225,6 +225,15 @@ def fit_loglog(x, y):
     return float(b), float(t_quantile(n - 2) * se), float(a), n
 
 
+def align_se2(a, b):
+    """Least-squares rotation and translation taking points a onto b (2-D Procrustes, Umeyama 1991)."""
+    ac, bc = a.mean(0), b.mean(0)
+    h = (a - ac).T @ (b - bc)
+    th = np.arctan2(h[0, 1] - h[1, 0], h[0, 0] + h[1, 1])
+    r = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+    return r, bc - r @ ac
+
+
 def plot_loglog_lines(ax, lines, x, metric):
     """One line per (label, rows) of `lines` on log-log axes: the mean +- 95 % CI over seeds at each x, and the
     fitted slope (fit_loglog) drawn through them. Returns (label, slope, ci95, points, summary) per line."""

@@ -17,15 +17,6 @@ import numpy as np  # noqa: E402
 import arbor_results as ar  # noqa: E402
 
 
-def align_se2(a, b):
-    """Least-squares rotation and translation taking points a onto b (2-D Procrustes, Umeyama 1991)."""
-    ac, bc = a.mean(0), b.mean(0)
-    h = (a - ac).T @ (b - bc)
-    th = np.arctan2(h[0, 1] - h[1, 0], h[0, 0] + h[1, 1])
-    r = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
-    return r, bc - r @ ac
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("run_dir")
@@ -48,7 +39,7 @@ def main():
         inside = (gps[:, 0] >= est[0, 0]) & (gps[:, 0] <= est[-1, 0])
         ex = np.interp(gps[inside, 0], est[:, 0], est[:, 1])
         ey = np.interp(gps[inside, 0], est[:, 0], est[:, 2])
-        r, t = align_se2(np.c_[ex, ey], gps[inside, 1:3])
+        r, t = ar.align_se2(np.c_[ex, ey], gps[inside, 1:3])
         est[:, 1:3] = (r @ est[:, 1:3].T).T + t
         if len(est_map):
             est_map = (r @ est_map.T).T + t

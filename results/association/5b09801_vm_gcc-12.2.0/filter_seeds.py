@@ -4,16 +4,20 @@ For each csv after the reference: the ratio of mean SE(2)-aligned ATE to the ref
 with a 95 % bootstrap interval over worlds (a world's runs are resampled together), the ratio on world seeds
 1-20 and 21-40 apart, and the ratio from the filter seed = world seed runs alone (what a one-seed-per-world
 study sees). With --profile OUT, also the mean position error of the best particle's trajectory every 25
-steps, as it is and after the SE(2) alignment the ATE uses, which shows where in the run two strategies part, and per 100 steps the duplicates the best particle
+steps and at the last, as it is and after the SE(2) alignment the ATE uses, which shows where in the run two strategies part, and per 100 steps the duplicates the best particle
 started (a landmark begun from a true landmark that already had one) and the share of its pairings of true
 landmarks that went to such a duplicate rather than to the first landmark of that true landmark.
 Usage: /usr/bin/python3 filter_seeds.py [--profile OUT] REF.csv OTHER.csv...
 """
 import argparse
 import pathlib
+import sys
 
 import numpy as np
 import pandas as pd
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[3] / "analysis"))
+import arbor_results as ar  # noqa: E402
 
 COLUMNS = ["world_seed", "filter_seed", "ate_aligned", "ate", "f1", "nees_median"]
 
@@ -32,13 +36,6 @@ def bootstrap(runs, draws=2000):
     rng = np.random.default_rng(0)
     values = [ratio(per_world.iloc[rng.integers(0, len(per_world), len(per_world))]) for _ in range(draws)]
     return np.percentile(values, [2.5, 97.5])
-
-
-def truth_positions(scenario):
-    lines = scenario.read_text().splitlines()
-    start = next(line for line in lines if line.startswith("initial")).split()[2:4]
-    rest = [line.split()[1:3] for line in lines if line.startswith("truth")]
-    return np.array([start] + rest, dtype=float)
 
 
 def scan_labels(scenario):
@@ -71,14 +68,6 @@ def duplicate_counts(run, scans, window=100):
     return counts
 
 
-def aligned(path, truth):
-    """path moved by the rotation and translation that best fit it to truth (least squares, Umeyama 1991)."""
-    p0, t0 = path.mean(axis=0), truth.mean(axis=0)
-    u, _, vt = np.linalg.svd((path - p0).T @ (truth - t0))
-    d = np.diag([1.0, np.sign(np.linalg.det(u @ vt))])
-    return (path - p0) @ (u @ d @ vt) + t0
-
-
 def error_profile(out, name):
     """Mean position error per step over NAME's runs, unaligned and aligned, their count, and their summed
     duplicate_counts."""
@@ -87,12 +76,19 @@ def error_profile(out, name):
     for run in sorted((out / "runs").glob(f"{name}-s*")):
         seed = run.name[len(name) + 1:].split("-")[0]
         scenario = out / "scenarios" / f"{world}-{clutter}-{seed}.scn"
-        path = np.loadtxt(run / "trajectory.tum")[:, 1:3]
-        truth = truth_positions(scenario)
+        # trajectory.tum starts at the initial pose, the scenario's truth after the first step.
+        path = ar.read_tum(run / "trajectory.tum")[["x", "y"]].to_numpy()[1:]
+        truth = ar.read_scenario_truth(scenario)[0][["x", "y"]].to_numpy()
+        rotation, translation = ar.align_se2(path, truth)
         errors.append(np.hypot(*(path - truth).T))
-        errors_aligned.append(np.hypot(*(aligned(path, truth) - truth).T))
+        errors_aligned.append(np.hypot(*(path @ rotation.T + translation - truth).T))
         duplicates = duplicates + duplicate_counts(run, scan_labels(scenario))
     return np.mean(errors, axis=0), np.mean(errors_aligned, axis=0), len(errors), duplicates
+
+
+def sampled(profile, every=25):
+    """Every `every`-th step of a per-step profile, and its last step."""
+    return np.append(profile[::every], profile[-1]) if (len(profile) - 1) % every else profile[::every]
 
 
 def main():
@@ -115,12 +111,12 @@ def main():
               f"{ratio(second):.2f} | {ratio(same):.2f} | {runs.f1.mean():.4f} | {runs.nees_median.median():.0f} |")
     if args.profile:
         profiles = {pathlib.Path(p).stem: error_profile(args.profile, pathlib.Path(p).stem) for p in [args.ref] + args.others}
-        print("\nmean position error (m) of the best particle, every 25 steps")
+        print("\nmean position error (m) of the best particle at steps 0, 25, ... and the last")
         for name, (profile, _, count, _) in profiles.items():
-            print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in profile[::25]))
+            print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in sampled(profile)))
         print("\nthe same after SE(2) alignment of each run")
         for name, (_, profile, count, _) in profiles.items():
-            print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in profile[::25]))
+            print(f"{name:28s} n={count:3d} " + " ".join(f"{e:.2f}" for e in sampled(profile)))
         print("\nper 100 steps: duplicates started per run / share of true pairings made with a duplicate")
         for name, (_, _, count, dup) in profiles.items():
             share = dup[:, 1] / np.maximum(dup[:, 1] + dup[:, 2], 1)

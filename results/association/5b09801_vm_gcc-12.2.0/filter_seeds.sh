@@ -18,7 +18,7 @@ for s in $seeds; do
   scn=$out/scenarios/$world-c$clutter-s$s.scn
   [ -f "$scn" ] || "$arbor" simulate --world "$world" --landmarks 250 --clutter "$clutter" --seed "$s" --out "$scn" > /dev/null
   for o in $offsets; do
-    fs=$((s + o)) run=$out/runs/$name-$world-c$clutter-s$s-f$((s + o))
+    fs=$((s + o)) run=$out/runs/$name-$world-c$clutter-s$s-f$fs
     [ -f "$run/result.json" ] || "$arbor" run --scenario "$scn" --filter fastslam2 --particles "${PARTICLES:-100}" \
       --seed "$fs" --threads 2 --quiet --out "$run" "$@" > /dev/null
     "$py" -c "import json,sys; r = json.load(open(sys.argv[1]))
