@@ -37,6 +37,7 @@ from paired import difference  # noqa: E402
 
 STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
 RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)(?:-f(?P<filter_seed>\d+))?-(?P<strategy>[a-z_]+)"
+METRICS = ["f1", "ate_m", "ate_aligned_m", "map_ratio", "spurious", "wall_s"]  # per run, averaged in the tables
 FIELDS = {"assoc_f1": "f1", "ate_rmse_m": "ate_m", "ate_aligned_rmse_m": "ate_aligned_m", "landmarks": "landmarks",
           "observed_true_landmarks": "observed", "spurious_landmarks": "spurious", "wall_time_s": "wall_s"}
 
@@ -81,9 +82,8 @@ def paired(df, a, b, metrics=(("f1", "F1", True), ("ate_aligned_m", "aligned ATE
 def per_world(g, strategies, metric=None):
     """One row per world seed, a column per strategy (under each metric, or the one given): the mean over the
     filter seeds that every listed strategy ran on that world."""
-    metrics = [m for m in ["f1", "ate_m", "ate_aligned_m", "map_ratio", "spurious", "wall_s"] if m in g.columns]
     runs = g[g.strategy.isin(strategies)]
-    wide = runs.pivot(index=["seed", "filter_seed"], columns="strategy", values=metrics)
+    wide = runs.pivot(index=["seed", "filter_seed"], columns="strategy", values=METRICS)
     wide = (wide[metric] if metric else wide).dropna()
     return wide.groupby(level="seed").mean()
 
@@ -95,9 +95,10 @@ def ratio_to_known(df):
     rng = np.random.default_rng(1)
     rows = []
     for (world, clutter), g in df.groupby(["world", "clutter"]):
-        if "known" not in set(g.strategy):
+        ran = set(g.strategy)
+        if "known" not in ran:
             continue
-        for strategy in [s for s in STRATEGIES if s in set(g.strategy) and s != "known"]:
+        for strategy in [s for s in STRATEGIES if s in ran and s != "known"]:
             both = per_world(g, [strategy, "known"], "ate_aligned_m")
             a, k = both[strategy].to_numpy(), both["known"].to_numpy()
             interval = "–"
@@ -116,9 +117,8 @@ def main(out):
         sys.exit(f"no runs under {out}/runs")
     if os.path.isdir(os.path.join(out, "runs")):
         df.to_csv(os.path.join(out, "clutter.csv"), index=False)
-    metrics = ["f1", "ate_m", "ate_aligned_m", "map_ratio", "spurious", "wall_s"]
     table = (df.groupby(["world", "clutter", "strategy"])
-               .agg(seeds=("seed", "nunique"), **{m: (m, "mean") for m in metrics})
+               .agg(seeds=("seed", "nunique"), **{m: (m, "mean") for m in METRICS})
                .reset_index())
     # The unaligned ATE carries a rigid offset of the whole solution (the map's frame is fixed by the first
     # scans, each run one posterior sample of it) that varies several-fold between seeds, so the comparison
