@@ -16,7 +16,7 @@
 namespace arbor::internal {
 
 // A landmark with its reference count. Deriving (rather than holding a member) lets the Itanium C++ ABI put
-// the count in Landmark's tail padding: a leaf costs exactly sizeof(Landmark) = 96 bytes, not 112.
+// the count in Landmark's tail padding: a leaf costs exactly sizeof(Landmark) = 112 bytes, not 128.
 struct LeafNode : Landmark {
   explicit LeafNode(const Landmark& lm) : Landmark(lm) {}
   std::atomic<std::uint32_t> rc{1};
