@@ -36,6 +36,13 @@
 
 namespace arbor {
 
+// A young landmark found to be a drifted copy of an old, dormant one (FastSlamOptions::close_loops): a
+// measurement paired with the copy updates the old landmark.
+struct LandmarkAlias {
+  LandmarkId copy = kNoLandmark;
+  LandmarkId original = kNoLandmark;
+};
+
 template <LandmarkMap Map>
 struct Particle {
   Pose2 pose;                   // the last draw, or between draws the predicted mean since it
@@ -46,6 +53,8 @@ struct Particle {
   DecisionHistory decisions;    // scans with measurements or removals; for scoring and `arbor smooth --associations`
   LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end)
   std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
+  std::vector<LandmarkAlias> aliases;  // open loop closures, oldest first (FastSlamOptions::close_loops)
+  std::int64_t loop_closures = 0;      // aliases this lineage made
 };
 
 // A pose-free search of a map for one scan (the locality tree, from variants/): fills the pose world_T_robot
@@ -87,6 +96,9 @@ class FastSlam {
     log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
                                std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
     prune_ = !Assoc::kTraits.uses_ground_truth || options.prune_with_known_association;
+    close_loops_ = options.close_loops && !Assoc::kTraits.uses_ground_truth;  // the ids close loops themselves
+    loop_drift_ = Vec3(options.loop_drift_m, options.loop_drift_m, 0.0).cwiseAbs2().asDiagonal();
+    loop_gate_ = chi_square_quantile(options.association.gate_probability, 2);
     const double nu = options.student_dof;
     student_log_norm_ = std::lgamma(0.5 * (nu + 2.0)) - std::lgamma(0.5 * nu) - std::log(nu * kPi);
     last_time_s_ = scenario.start_time_s;
@@ -203,6 +215,7 @@ class FastSlam {
   struct Touched {
     Landmark landmark;
     bool is_new = false;
+    bool was_confirmed = false;  // before this scan's update
   };
   struct Scratch {
     std::vector<Landmark> nearby;              // landmarks in the query box, ascending id
@@ -214,6 +227,8 @@ class FastSlam {
     std::vector<Touched> touched;
     std::vector<int> touched_of;               // per measurement: index into touched, or -1
     std::vector<LandmarkId> erased;            // removed by this scan's negative evidence
+    std::vector<LandmarkId> redirected;        // per measurement: the alias it was paired through, or kNoLandmark
+    std::vector<LandmarkId> retired;           // aliases whose original this scan paired directly
   };
 
   void resample() {
@@ -288,12 +303,14 @@ class FastSlam {
     if (!fastslam2) draw_pose(p, index, RandomPurpose::kMotion);
     gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
+    redirect_aliases(p, s);
     collect_touched(p, step.measurements, s);
     if (options_.relocalize)
       for (int t : s.touched_of) p.step_paired_settled += t >= 0 && settled(s.touched[t].landmark);
     double log_weight = fastslam2 ? propose_and_draw(p, step.measurements, index, s) : 0.0;
     log_weight += update_landmarks(p, step.measurements, s, /*weight=*/!fastslam2);
     log_weight += add_new_landmarks(p, step.measurements, s);
+    if (close_loops_) find_aliases(p, s);
     write_touched(p, s);
     apply_negative_evidence(p, s, s.touched);
     p.log_weight += log_weight;
@@ -339,7 +356,7 @@ class FastSlam {
       if (t == static_cast<int>(s.touched.size())) {
         const Landmark* lm = find_landmark(p, s, id);
         ARBOR_CHECK(lm != nullptr, "association paired with landmark {} that the map does not hold", id);
-        s.touched.push_back({*lm, false});
+        s.touched.push_back({*lm, false, lm->confirmed});
       }
       s.touched_of[k] = t;
     }
@@ -362,7 +379,8 @@ class FastSlam {
       const Mat2 landmark_part = H_m * lm.cov * H_m.transpose();
       const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
       double scale = 1.0;
-      log_weight += log_likelihood(nu, H_x * Sigma * H_x.transpose() + landmark_part + R_, &scale);
+      const Mat3 pose_part = Sigma + drift_allowance(s, k);
+      log_weight += log_likelihood(nu, H_x * pose_part * H_x.transpose() + landmark_part + R_, &scale);
       const Mat2 Q = landmark_part + scale * R_;
       const Mat2 S = H_x * Sigma * H_x.transpose() + Q;
       const Mat32 K = Sigma * H_x.transpose() * S.inverse();
@@ -385,10 +403,12 @@ class FastSlam {
       if (s.touched_of[k] < 0) continue;
       Landmark& lm = s.touched[s.touched_of[k]].landmark;
       Mat2 H_m;
-      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m);
+      Mat23 H_x;
+      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, &H_x);
       const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
       double scale = 1.0;
-      const double ll = log_likelihood(nu, H_m * lm.cov * H_m.transpose() + R_, &scale);
+      const Mat2 drift_part = H_x * drift_allowance(s, k) * H_x.transpose();
+      const double ll = log_likelihood(nu, H_m * lm.cov * H_m.transpose() + drift_part + R_, &scale);
       if (weight) log_weight += ll;
       const Mat2 R = scale * R_;
       const Mat2 Q = H_m * lm.cov * H_m.transpose() + R;
@@ -401,6 +421,7 @@ class FastSlam {
       ARBOR_CHECK(lm.cov(0, 0) > 0.0 && lm.cov.determinant() > 0.0, "landmark {} covariance lost definiteness", lm.id);
       lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
       lm.confirmed |= lm.log_odds >= options_.log_odds_confirm;
+      lm.seen_scan = scan_index_;
       const float sig = measurements[k].signature;
       if (!std::isnan(sig)) lm.signature = std::isnan(lm.signature) ? sig : lm.signature + 0.2f * (sig - lm.signature);
     }
@@ -422,7 +443,7 @@ class FastSlam {
       floor_covariance(&lm.cov);  // rank 1 at zero range
       lm.log_odds = static_cast<float>(options_.log_odds_initial);
       lm.confirmed = lm.log_odds >= options_.log_odds_confirm;
-      lm.born_scan = scan_index_;
+      lm.born_scan = lm.seen_scan = scan_index_;
       lm.signature = measurements[k].signature;
       lm.truth_label = measurements[k].truth_id >= 0 ? measurements[k].truth_id : -1;
       s.touched_of[k] = static_cast<int>(s.touched.size());
@@ -529,11 +550,17 @@ class FastSlam {
     for (const Landmark& lm : s.nearby) {
       bool seen = false;
       for (const auto& t : touched) seen |= t.landmark.id == lm.id;
+      // An alias a measurement was paired through was seen: the measurement updated its original instead.
+      for (LandmarkId a : s.redirected) seen |= a == lm.id;
       if (seen) continue;
       const auto drop = [&] {
         p.map.erase(lm.id);
         s.erased.push_back(lm.id);  // recorded, so the decisions can be replayed (record_decisions)
       };
+      if (std::find(s.retired.begin(), s.retired.end(), lm.id) != s.retired.end()) {
+        drop();
+        continue;
+      }
       if (prune_ && expired(lm)) {
         drop();
         continue;
@@ -545,6 +572,75 @@ class FastSlam {
       else p.map.set(updated);
     }
     s.nearby.clear();
+    s.redirected.clear();
+    s.retired.clear();
+    if (p.aliases.empty() || s.erased.empty()) return;
+    std::erase_if(p.aliases, [&](const LandmarkAlias& a) {
+      return std::find(s.erased.begin(), s.erased.end(), a.copy) != s.erased.end() ||
+             std::find(s.erased.begin(), s.erased.end(), a.original) != s.erased.end();
+    });
+  }
+
+  // The pose drift a measurement paired through an alias is weighted with: the loop's drift, which the
+  // particle's covariance does not hold, is what put the copy where it is (FastSlamOptions::loop_drift_m).
+  // Weighted with the particle's covariance alone, the closing particles would lose to those that keep the copy.
+  Mat3 drift_allowance(const Scratch& s, std::size_t k) const {
+    return k < s.redirected.size() && s.redirected[k] != kNoLandmark ? loop_drift_ : Mat3::Zero();
+  }
+
+  // Loop closing, step 1 (FastSlamOptions::close_loops): a measurement the association paired with an alias
+  // is paired with its original instead, whatever the gate says, as known association would pair it. Once
+  // the association pairs the original itself, the pose is back on the old map and the copy is retired.
+  void redirect_aliases(const ParticleState& p, Scratch& s) const {
+    s.redirected.assign(s.decision.size(), kNoLandmark);
+    s.retired.clear();
+    for (const LandmarkAlias& a : p.aliases) {
+      const auto end = s.decision.end();
+      const auto copy = std::find(s.decision.begin(), end, a.copy);
+      if (std::find(s.decision.begin(), end, a.original) != end) {
+        if (copy == end) s.retired.push_back(a.copy);
+        continue;
+      }
+      if (copy == end || find_landmark(p, s, a.original) == nullptr) continue;
+      s.redirected[copy - s.decision.begin()] = a.copy;
+      *copy = a.original;
+    }
+  }
+
+  // Loop closing, step 2: a landmark confirmed this scan is a copy of a dormant landmark when it lies inside
+  // the gate of exactly that one, widened by the loop's drift; with two in the gate, one re-sighting cannot
+  // say which. Why wait for the copy to be confirmed rather than pair the re-sighting itself: a widened gate
+  // takes in clutter, and pairing at once took rooms with clutter 5 from 1.58 to 2.50 (JCBB / known ATE,
+  // results/association/61e6ed5_vm_gcc-12.2.0); a landmark seen twice is no clutter.
+  void find_aliases(ParticleState& p, const Scratch& s) const {
+    const auto touched = [&](LandmarkId id) {
+      for (const Touched& t : s.touched)
+        if (t.landmark.id == id) return true;
+      return false;
+    };
+    const auto aliased = [&](LandmarkId id) {
+      for (const LandmarkAlias& a : p.aliases)
+        if (a.copy == id || a.original == id) return true;
+      return false;
+    };
+    for (const Touched& t : s.touched) {
+      if (t.is_new || t.was_confirmed || !t.landmark.confirmed) continue;
+      const Landmark& copy = t.landmark;
+      const Landmark* original = nullptr;
+      int matches = 0;
+      for (const Landmark& lm : s.nearby) {
+        if (!lm.confirmed || scan_index_ - lm.seen_scan < options_.dormant_scans || touched(lm.id) || aliased(lm.id))
+          continue;
+        const Vec2 d = copy.mean - lm.mean;
+        const Mat2 C = copy.cov + lm.cov + loop_drift_.topLeftCorner<2, 2>();
+        if (d.dot(C.ldlt().solve(d)) > loop_gate_) continue;
+        original = &lm;
+        ++matches;
+      }
+      if (matches != 1) continue;
+      p.aliases.push_back({copy.id, original->id});
+      ++p.loop_closures;
+    }
   }
 
   // A kidnapped robot (or one whose drift defeats the gates at a loop closure) pairs little of what it sees
@@ -649,6 +745,9 @@ class FastSlam {
   double last_time_s_ = 0.0;
   BodyProcessNoise step_noise_;      // the step's control noise in the start frame, shared by every particle
   bool prune_ = true;
+  bool close_loops_ = false;
+  Mat3 loop_drift_ = Mat3::Zero();  // FastSlamOptions::loop_drift_m as a pose covariance (position only)
+  double loop_gate_ = 0.0;
   tbb::task_arena arena_;
   std::vector<ParticleState> particles_;
   std::vector<double> weights_;

@@ -84,6 +84,16 @@ struct FastSlamOptions {
   bool relocalize = false;
   int relocalize_min_pairings = 5;
 
+  // Loop closing by re-sighting (issue 12). After a loop, the drift that each particle's own covariance does
+  // not hold puts landmarks seen long ago outside every gate, and their re-sightings start copies in the
+  // drifted frame. A copy that is confirmed (so not clutter) while it lies inside the gate of exactly one
+  // dormant landmark (confirmed, unpaired for dormant_scans scans), widened by loop_drift_m (a standard
+  // deviation, per axis), becomes that landmark's alias: from the next scan on, a measurement the association
+  // pairs with the copy updates the old landmark, which pulls the pose back onto the old map.
+  bool close_loops = false;
+  int dormant_scans = 30;
+  double loop_drift_m = 1.0;
+
   // Returns an empty string when valid, else what is wrong (Ceres's Options::IsValid idea).
   std::string validate() const;
 };

@@ -3,6 +3,7 @@
 #ifndef ARBOR_CORE_ENGINE_FILTER_H_
 #define ARBOR_CORE_ENGINE_FILTER_H_
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ class Filter {
   virtual std::vector<Landmark> best_map() const = 0;
   // Measurements the known-association gate rejected in the best particle's lineage.
   virtual std::int64_t best_rejected_measurements() const = 0;
+  // Loops the best particle's lineage closed by re-sighting (FastSlamOptions::close_loops).
+  virtual std::int64_t best_loop_closures() const = 0;
   // The best particle's association decisions, one entry per scan with measurements or removals, oldest
   // first; core/metrics/decision_score.h scores them against ground truth.
   virtual std::vector<StepDecisions> best_decisions() const = 0;
@@ -63,11 +66,20 @@ class FilterImpl final : public Filter {
   std::vector<TimedPose> best_trajectory() const override {
     return engine_.particle(engine_.best_particle()).history.to_vector();
   }
+  // Without the copies that are aliases of older landmarks: they are bookkeeping of an open loop closure.
   std::vector<Landmark> best_map() const override {
+    const auto& best = engine_.particle(engine_.best_particle());
     std::vector<Landmark> out;
-    engine_.particle(engine_.best_particle()).map.for_each([&](const Landmark& lm) { out.push_back(lm); });
+    const auto is_copy = [&](const Landmark& lm) {
+      const auto& aliases = best.aliases;
+      return std::any_of(aliases.begin(), aliases.end(), [&](const LandmarkAlias& a) { return a.copy == lm.id; });
+    };
+    best.map.for_each([&](const Landmark& lm) {
+      if (!is_copy(lm)) out.push_back(lm);
+    });
     return out;
   }
+  std::int64_t best_loop_closures() const override { return engine_.particle(engine_.best_particle()).loop_closures; }
   std::int64_t best_rejected_measurements() const override {
     return engine_.particle(engine_.best_particle()).rejected;
   }

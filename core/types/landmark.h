@@ -106,6 +106,10 @@ struct Landmark {
   // The scan (counted from 0) that started it: a provisional landmark not confirmed within a few scans is
   // dropped (FastSlamOptions::provisional_scans).
   std::int32_t born_scan = 0;
+  // The last scan that paired it (or started it): a landmark unseen for long is dormant, and after a loop its
+  // re-sighting may fall outside every gate (FastSlamOptions::close_loops). It fills padding that the
+  // persistent back ends' reference count leaves free: a leaf stays 112 bytes.
+  std::int32_t seen_scan = 0;
   // Scalar signature (tree diameter in Victoria Park); NaN when the sensor gives none.
   float signature = std::numeric_limits<float>::quiet_NaN();
   // Ground-truth id of the measurement that created the landmark (-1: clutter or unknown). Bookkeeping for
@@ -115,7 +119,7 @@ struct Landmark {
 
   bool operator==(const Landmark& o) const {
     return id == o.id && mean == o.mean && cov == o.cov && log_odds == o.log_odds && confirmed == o.confirmed &&
-           born_scan == o.born_scan &&
+           born_scan == o.born_scan && seen_scan == o.seen_scan &&
            (signature == o.signature || (std::isnan(signature) && std::isnan(o.signature))) &&
            truth_label == o.truth_label && locality == o.locality;
   }

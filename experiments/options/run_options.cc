@@ -95,6 +95,17 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
                   "searches to its bound and keeps the best)")
       ->check(within(0.0, 1.0))
       ->capture_default_str();
+  cmd.add_flag("--close-loops", config.options.close_loops,
+                "Close loops by re-sighting: a landmark confirmed inside the gate of exactly one dormant landmark "
+                "(unpaired for --dormant-scans scans), widened by --loop-drift-m, is that landmark's drifted copy, "
+                "and later measurements of the copy update the original; not with --assoc known");
+  cmd.add_option("--dormant-scans", config.options.dormant_scans, "Scans unpaired after which a landmark is dormant")
+      ->check(at_least(1))
+      ->capture_default_str();
+  cmd.add_option("--loop-drift-m", config.options.loop_drift_m,
+                  "Position drift (standard deviation per axis) a loop may have built up, for --close-loops")
+      ->check(at_least(1e-6))
+      ->capture_default_str();
   cmd.add_option("--prior-map", config.prior_map_path,
                   "Start every particle from this map (map.csv: a run's map, or `arbor simulate --survey-out`): "
                   "localisation in a known map; its landmarks count as confirmed, new ones get ids above its largest")

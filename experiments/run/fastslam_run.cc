@@ -133,6 +133,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"relocalize", config.options.relocalize},
                  {"relocalize_min_pairings", config.options.relocalize_min_pairings},
                  {"relocalize_accept", config.options.association.accept_explained},
+                 {"close_loops", config.options.close_loops},
+                 {"dormant_scans", config.options.dormant_scans},
+                 {"loop_drift_m", config.options.loop_drift_m},
                  {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
                  {"likelihood", std::string(to_string(config.options.likelihood))},
                  {"student_dof", config.options.student_dof},
@@ -147,6 +150,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["nees_median"] = out.nees.empty() ? Json(nullptr) : Json(quantile(out.nees, 0.5));
   r["nees_in_band_fraction"] = out.nees.empty() ? Json(nullptr) : Json(fraction_in_band(out.nees, kNeesBand3Dof95));
   r["rejected_measurements"] = filter->best_rejected_measurements();
+  r["loop_closures"] = filter->best_loop_closures();
   r["assoc_precision"] = optional_number(counts.precision());
   r["assoc_recall"] = optional_number(counts.recall());
   r["assoc_f1"] = optional_number(counts.f1());
