@@ -93,12 +93,12 @@ class FastSlam {
     ARBOR_CHECK(!options.relocalize || relocalizer_, "relocalize is set but no relocalizer was given");
     R_ = sensor_.R();
     const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
-    log_likelihood_unpaired_ = -0.5 * chi_square_quantile(options.association.gate_probability, 2) -
-                               std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
+    const double gate = chi_square_quantile(options.association.gate_probability, 2);
+    log_likelihood_unpaired_ = -0.5 * gate - std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
     prune_ = !Assoc::kTraits.uses_ground_truth || options.prune_with_known_association;
     close_loops_ = options.close_loops && !Assoc::kTraits.uses_ground_truth;  // the ids close loops themselves
     loop_drift_ = Vec3(options.loop_drift_m, options.loop_drift_m, 0.0).cwiseAbs2().asDiagonal();
-    loop_gate_ = chi_square_quantile(options.association.gate_probability, 2);
+    loop_gate_ = gate;
     const double nu = options.student_dof;
     student_log_norm_ = std::lgamma(0.5 * (nu + 2.0)) - std::lgamma(0.5 * nu) - std::log(nu * kPi);
     last_time_s_ = scenario.start_time_s;
@@ -379,7 +379,7 @@ class FastSlam {
       const Mat2 landmark_part = H_m * lm.cov * H_m.transpose();
       const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
       double scale = 1.0;
-      const Mat3 pose_part = Sigma + drift_allowance(s, k);
+      const Mat3 pose_part = redirected(s, k) ? Mat3(Sigma + loop_drift_) : Sigma;
       log_weight += log_likelihood(nu, H_x * pose_part * H_x.transpose() + landmark_part + R_, &scale);
       const Mat2 Q = landmark_part + scale * R_;
       const Mat2 S = H_x * Sigma * H_x.transpose() + Q;
@@ -404,11 +404,12 @@ class FastSlam {
       Landmark& lm = s.touched[s.touched_of[k]].landmark;
       Mat2 H_m;
       Mat23 H_x;
-      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, &H_x);
+      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, redirected(s, k) ? &H_x : nullptr);
       const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
       double scale = 1.0;
-      const Mat2 drift_part = H_x * drift_allowance(s, k) * H_x.transpose();
-      const double ll = log_likelihood(nu, H_m * lm.cov * H_m.transpose() + drift_part + R_, &scale);
+      Mat2 S = H_m * lm.cov * H_m.transpose();
+      if (redirected(s, k)) S += H_x * loop_drift_ * H_x.transpose();
+      const double ll = log_likelihood(nu, S + R_, &scale);
       if (weight) log_weight += ll;
       const Mat2 R = scale * R_;
       const Mat2 Q = H_m * lm.cov * H_m.transpose() + R;
@@ -548,11 +549,9 @@ class FastSlam {
   void apply_negative_evidence(ParticleState& p, Scratch& s, const std::vector<Touched>& touched) {
     s.erased.clear();
     for (const Landmark& lm : s.nearby) {
-      bool seen = false;
-      for (const auto& t : touched) seen |= t.landmark.id == lm.id;
-      // An alias a measurement was paired through was seen: the measurement updated its original instead.
-      for (LandmarkId a : s.redirected) seen |= a == lm.id;
-      if (seen) continue;
+      // An alias a measurement was paired through was seen too: the measurement updated its original instead.
+      if (touches(touched, lm.id) || std::find(s.redirected.begin(), s.redirected.end(), lm.id) != s.redirected.end())
+        continue;
       const auto drop = [&] {
         p.map.erase(lm.id);
         s.erased.push_back(lm.id);  // recorded, so the decisions can be replayed (record_decisions)
@@ -581,19 +580,27 @@ class FastSlam {
     });
   }
 
-  // The pose drift a measurement paired through an alias is weighted with: the loop's drift, which the
-  // particle's covariance does not hold, is what put the copy where it is (FastSlamOptions::loop_drift_m).
-  // Weighted with the particle's covariance alone, the closing particles would lose to those that keep the copy.
-  Mat3 drift_allowance(const Scratch& s, std::size_t k) const {
-    return k < s.redirected.size() && s.redirected[k] != kNoLandmark ? loop_drift_ : Mat3::Zero();
+  static bool touches(const std::vector<Touched>& touched, LandmarkId id) {
+    return std::any_of(touched.begin(), touched.end(), [&](const Touched& t) { return t.landmark.id == id; });
+  }
+
+  // Whether measurement k was paired through an alias. Its weight then allows the loop's drift
+  // (FastSlamOptions::loop_drift_m), which the particle's covariance does not hold and which put the copy where
+  // it is: weighted with the particle's covariance alone, the closing particles would lose to those that keep
+  // the copy.
+  static bool redirected(const Scratch& s, std::size_t k) {
+    return k < s.redirected.size() && s.redirected[k] != kNoLandmark;
   }
 
   // Loop closing, step 1 (FastSlamOptions::close_loops): a measurement the association paired with an alias
   // is paired with its original instead, whatever the gate says, as known association would pair it. Once
   // the association pairs the original itself, the pose is back on the old map and the copy is retired.
+  // Without aliases s.redirected stays empty, so the option costs nothing when off.
   void redirect_aliases(const ParticleState& p, Scratch& s) const {
-    s.redirected.assign(s.decision.size(), kNoLandmark);
+    s.redirected.clear();
     s.retired.clear();
+    if (p.aliases.empty()) return;
+    s.redirected.assign(s.decision.size(), kNoLandmark);
     for (const LandmarkAlias& a : p.aliases) {
       const auto end = s.decision.end();
       const auto copy = std::find(s.decision.begin(), end, a.copy);
@@ -613,11 +620,6 @@ class FastSlam {
   // takes in clutter, and pairing at once took rooms with clutter 5 from 1.58 to 2.50 (JCBB / known ATE,
   // results/association/61e6ed5_vm_gcc-12.2.0); a landmark seen twice is no clutter.
   void find_aliases(ParticleState& p, const Scratch& s) const {
-    const auto touched = [&](LandmarkId id) {
-      for (const Touched& t : s.touched)
-        if (t.landmark.id == id) return true;
-      return false;
-    };
     const auto aliased = [&](LandmarkId id) {
       for (const LandmarkAlias& a : p.aliases)
         if (a.copy == id || a.original == id) return true;
@@ -629,7 +631,8 @@ class FastSlam {
       const Landmark* original = nullptr;
       int matches = 0;
       for (const Landmark& lm : s.nearby) {
-        if (!lm.confirmed || scan_index_ - lm.seen_scan < options_.dormant_scans || touched(lm.id) || aliased(lm.id))
+        if (!lm.confirmed || scan_index_ - lm.seen_scan < options_.dormant_scans || touches(s.touched, lm.id) ||
+            aliased(lm.id))
           continue;
         const Vec2 d = copy.mean - lm.mean;
         const Mat2 C = copy.cov + lm.cov + loop_drift_.topLeftCorner<2, 2>();
