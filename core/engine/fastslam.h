@@ -97,6 +97,7 @@ class FastSlam {
     log_likelihood_unpaired_ = -0.5 * gate - std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
     prune_ = !Assoc::kTraits.uses_ground_truth || options.prune_with_known_association;
     close_loops_ = options.close_loops && !Assoc::kTraits.uses_ground_truth;  // the ids close loops themselves
+    pose_from_confirmed_ = options.pose_from_confirmed && !Assoc::kTraits.uses_ground_truth;
     loop_drift_ = Vec3(options.loop_drift_m, options.loop_drift_m, 0.0).cwiseAbs2().asDiagonal();
     loop_gate_ = gate;
     const double nu = options.student_dof;
@@ -372,7 +373,12 @@ class FastSlam {
     Mat3 Sigma = p.pose_covariance;
     for (std::size_t k = 0; k < measurements.size(); ++k) {
       if (s.touched_of[k] < 0) continue;
-      const Landmark& lm = s.touched[s.touched_of[k]].landmark;
+      const Touched& t = s.touched[s.touched_of[k]];
+      if (!steers_pose(t)) {
+        log_weight += log_likelihood_unpaired_;
+        continue;
+      }
+      const Landmark& lm = t.landmark;
       Mat2 H_m;
       Mat23 H_x;
       const Vec2 z_hat = range_bearing_predict(Pose2::from_vector(mu), lm.mean, &H_m, &H_x);
@@ -395,13 +401,18 @@ class FastSlam {
     return log_weight;
   }
 
+  // FastSlamOptions::pose_from_confirmed: a pairing with a landmark that was provisional before this scan
+  // counts, for the pose and the weight, as an unpaired measurement.
+  bool steers_pose(const Touched& t) const { return !pose_from_confirmed_ || t.was_confirmed; }
+
   // Landmark EKF updates at the drawn pose (Montemerlo 2002, eq. 8-11; Joseph form). With weight (FastSLAM
   // 1.0) returns the log importance weight, the product of the measurement likelihoods.
   double update_landmarks(const ParticleState& p, const std::vector<Measurement>& measurements, Scratch& s, bool weight) const {
     double log_weight = 0.0;
     for (std::size_t k = 0; k < measurements.size(); ++k) {
       if (s.touched_of[k] < 0) continue;
-      Landmark& lm = s.touched[s.touched_of[k]].landmark;
+      Touched& t = s.touched[s.touched_of[k]];
+      Landmark& lm = t.landmark;
       Mat2 H_m;
       Mat23 H_x;
       const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, redirected(s, k) ? &H_x : nullptr);
@@ -410,7 +421,7 @@ class FastSlam {
       Mat2 S = H_m * lm.cov * H_m.transpose();
       if (redirected(s, k)) S += H_x * loop_drift_ * H_x.transpose();
       const double ll = log_likelihood(nu, S + R_, &scale);
-      if (weight) log_weight += ll;
+      if (weight) log_weight += steers_pose(t) ? ll : log_likelihood_unpaired_;
       const Mat2 R = scale * R_;
       const Mat2 Q = H_m * lm.cov * H_m.transpose() + R;
       const Mat2 K = lm.cov * H_m.transpose() * Q.inverse();
@@ -749,6 +760,7 @@ class FastSlam {
   BodyProcessNoise step_noise_;      // the step's control noise in the start frame, shared by every particle
   bool prune_ = true;
   bool close_loops_ = false;
+  bool pose_from_confirmed_ = false;
   Mat3 loop_drift_ = Mat3::Zero();  // FastSlamOptions::loop_drift_m as a pose covariance (position only)
   double loop_gate_ = 0.0;
   tbb::task_arena arena_;

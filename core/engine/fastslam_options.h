@@ -66,6 +66,14 @@ struct FastSlamOptions {
   // scans later, even where it sits at the edge of the view and no negative evidence reaches it.
   double log_odds_confirm = 2.0;
   int provisional_scans = 10;
+  // Only confirmed landmarks steer the pose: a measurement paired with a provisional landmark still updates
+  // that landmark and its existence, but it neither moves FastSLAM 2.0's proposal nor weighs the particle
+  // otherwise than an unpaired measurement would. A provisional landmark may be clutter, and with clutter a
+  // spurious point paired with a spurious provisional landmark pulls the pose, most where the scan holds
+  // little else (in rooms, a corner that faces a wall). Ignored with known association, whose pairings are
+  // right. Off by default: without clutter the second sighting of a new landmark is information the filter
+  // then forgoes (the README's `--pose-from-confirmed` paragraph gives the figures).
+  bool pose_from_confirmed = false;
   // Pruning is off with known association: the ids are right by construction, so evidence only matters
   // when the filter decides what exists.
   bool prune_with_known_association = false;

@@ -82,6 +82,10 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
                   "with --assoc known")
       ->check(at_least(0))
       ->capture_default_str();
+  cmd.add_flag("--pose-from-confirmed", config.options.pose_from_confirmed,
+                "Only confirmed landmarks steer the pose: a measurement paired with a provisional landmark updates "
+                "it, but moves the pose and weighs the particle as an unpaired measurement would (for cluttered "
+                "sensors); not with --assoc known");
   cmd.add_flag("--relocalize", config.options.relocalize,
                 "Relocalise a lost robot: when the best particle pairs under half a scan, search its settled map "
                 "with the pose-free locality tree; a pose that pairs more, found again at the next scan, re-seeds "
