@@ -69,10 +69,11 @@ struct FastSlamOptions {
   // Only confirmed landmarks steer the pose: a measurement paired with a provisional landmark still updates
   // that landmark and its existence, but it neither moves FastSLAM 2.0's proposal nor weighs the particle
   // otherwise than an unpaired measurement would. A provisional landmark may be clutter, and with clutter a
-  // spurious point paired with a spurious provisional landmark pulls the pose, most where the scan holds
-  // little else (in rooms, a corner that faces a wall). Ignored with known association, whose pairings are
-  // right. Off by default: without clutter the second sighting of a new landmark is information the filter
-  // then forgoes (the README's `--pose-from-confirmed` paragraph gives the figures).
+  // spurious point paired with a spurious provisional landmark favours and pulls the particles whose pose
+  // makes the two coincide, most where the scan holds little else (results/association/5c07acf_vm_gcc-12.2.0
+  // traces one such corner). Ignored with known association, whose pairings are right. Off by default: at
+  // low clutter the second sighting of a new landmark is information the filter then forgoes (rooms with
+  // clutter 2 lose by it; the README's `--pose-from-confirmed` paragraph gives the figures).
   bool pose_from_confirmed = false;
   // Pruning is off with known association: the ids are right by construction, so evidence only matters
   // when the filter decides what exists.

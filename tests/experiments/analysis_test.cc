@@ -309,6 +309,47 @@ TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {
   EXPECT_GT(std::filesystem::file_size(std::filesystem::path(out.str()) / "step_time_and_neff.png"), 1000u);
 }
 
+// trace_run.py classes each decision of the best particle against the true ids, and matches its pose to the
+// truth by time (the run writes its start pose and step 0's at the same time; the later one counts).
+TEST_F(AnalysisScripts, TraceRunClassesEveryDecisionAgainstTheTrueIds) {
+  ScratchDir out("trace_run");
+  std::ofstream(out / "world.scn") << "arbor-scenario 2\n"
+                                      "step 0 0 0 0\ntruth 0 0 0\nscan 2\nz 5 0 - 0\nz 3 1 - clutter\n"
+                                      "step 0.5 0 1 0\ntruth 1 0 0\nscan 2\nz 4 0 - 0\nz 6 1 - 1\n"
+                                      "step 1 0 1 0\ntruth 2 0 0\nscan 3\nz 3 0 - 0\nz 5 1 - 1\nz 2 2 - clutter\n";
+  std::filesystem::create_directories(out / "run");
+  // Step 0: landmark 0 first, clutter starts 1. Step 1: right; landmark 1 of the clutter takes true 1 (wrong).
+  // Step 2: true 0 starts landmark 2 (a duplicate), true 1 is missed, and clutter is paired with landmark 0.
+  std::ofstream(out / "run/associations.csv") << "step,measurement,landmark\n0,0,0\n0,1,1\n1,0,0\n1,1,1\n"
+                                                 "2,0,2\n2,1,-1\n2,2,0\n";
+  std::ofstream(out / "run/trajectory.tum") << "0 9 9 0 0 0 0 1\n0 0 0 0 0 0 0 1\n0.5 1.1 0 0 0 0 0 1\n"
+                                               "1 2 0.2 0 0 0 0.04997916927 0.99875026\n";
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/trace_run.py", out / "world.scn", out / "run", "--csv"},
+                       out / "log.txt"),
+            0)
+      << read_text(out / "log.txt");
+  const std::string log = read_text(out / "log.txt");
+  EXPECT_NE(log.find("scan,time_s,position_error_m,heading_error_deg,measurements,clutter,first,right,duplicate,"
+                     "wrong,missed,clutter_paired\n0,0,0,0,2,1,1,0,0,0,0,0\n1,0.5,0.1,0,2,0,0,1,0,1,0,0\n"
+                     "2,1,0.2,5.73,3,1,0,0,1,0,1,1\n"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("# whole run: 3 scans; first 1, right 1, duplicate 1, wrong 1, missed 1, clutter_paired 1"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("# heading error first over 5 deg: scan 2"), std::string::npos) << log;
+
+  // Without true ids (real data) there is nothing to class: a clear error, not a table of zeros.
+  std::ofstream(out / "unlabelled.scn") << "step 0 0 0 0\ntruth 0 0 0\nscan 1\nz 5 0 - -\n";
+  std::ofstream(out / "run/associations.csv") << "step,measurement,landmark\n0,0,0\n";
+  EXPECT_EQ(run_to_end({kPython, kSource + "/analysis/trace_run.py", out / "unlabelled.scn", out / "run"},
+                       out / "log2.txt"),
+            1);
+  EXPECT_NE(read_text(out / "log2.txt").find("step 0, measurement 0: the scenario gives no true id"),
+            std::string::npos)
+      << read_text(out / "log2.txt");
+}
+
 // The HTML report in a real browser (headless Chromium, Debian's chromium-headless-shell): the page's own
 // script records on <body> how many figures were decoded and how many tables are empty. A copy with one
 // figure's bytes damaged must count one broken figure, so the check can fail.
