@@ -375,6 +375,28 @@ def read_scenario_truth(path):
             pd.DataFrame(gps, columns=["t", "x", "y"]))
 
 
+def read_scenario_steps(path):
+    """Per step of a scenario file, in order: [time, true pose (x, y, theta) or None, the true id of each
+    measurement (-1 for clutter, None where the file gives none)]. Step k is the step that a run's
+    associations.csv calls k."""
+    steps = []
+    with open(path, encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            fields = line.split()
+            if not fields or fields[0].startswith("#"):
+                continue
+            if fields[0] == "step":
+                steps.append([float(fields[1]), None, []])
+            elif fields[0] == "truth" and steps:
+                steps[-1][1] = tuple(float(v) for v in fields[1:4])
+            elif fields[0] == "z":
+                if len(fields) < 5:
+                    raise ValueError(f"{path}:{number}: a measurement line needs 5 fields (z R PHI SIG TRUTH)")
+                label = fields[4]
+                steps[-1][2].append(-1 if label == "clutter" else None if label == "-" else int(label))
+    return steps
+
+
 def results_dir_of(path):
     """The sweep directory of a results path (the directory itself, or the one holding a results file)."""
     return path if os.path.isdir(path) else os.path.dirname(path)

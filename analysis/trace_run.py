@@ -26,27 +26,6 @@ import arbor_results as ar
 COUNTS = ["first", "right", "duplicate", "wrong", "missed", "clutter_paired"]
 
 
-def read_steps(path):
-    """Per step of the scenario: its time, its true pose (x, y, theta; None where the file gives none) and the
-    true id of each measurement (-1 for clutter, None where the file gives none)."""
-    steps = []
-    with open(path, encoding="utf-8") as f:
-        for number, line in enumerate(f, 1):
-            fields = line.split()
-            if not fields or fields[0].startswith("#"):
-                continue
-            if fields[0] == "step":
-                steps.append([float(fields[1]), None, []])
-            elif fields[0] == "truth" and steps:
-                steps[-1][1] = tuple(float(v) for v in fields[1:4])
-            elif fields[0] == "z":
-                if len(fields) < 5:
-                    raise ValueError(f"{path}:{number}: a measurement line needs 5 fields (z R PHI SIG TRUTH)")
-                label = fields[4]
-                steps[-1][2].append(-1 if label == "clutter" else None if label == "-" else int(label))
-    return steps
-
-
 def classify(steps, decisions):
     """One row of counts per step that has decisions, from associations.csv rows (step, measurement, landmark)."""
     first_of = {}  # true id -> its first map landmark
@@ -78,7 +57,7 @@ def classify(steps, decisions):
 
 
 def trace(scenario, run_dir):
-    steps = read_steps(scenario)
+    steps = ar.read_scenario_steps(scenario)
     estimate = ar.read_tum(f"{run_dir}/trajectory.tum")
     # The last estimate at each time: a run writes its start pose and then step 0's at the same time.
     by_time = {round(t, 9): (x, y, th) for t, x, y, th in zip(estimate.t, estimate.x, estimate.y, estimate.theta)}

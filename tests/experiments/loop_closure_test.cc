@@ -2,7 +2,6 @@
 // drift-widened gate of exactly one dormant landmark becomes its alias, and later measurements paired with
 // the alias update the old landmark. What must not close: a landmark seen recently, or a copy with two
 // dormant landmarks to choose from. And the option keeps runs bit-identical across back ends and threads.
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,25 +21,14 @@ namespace {
 constexpr int kQuietScans = 40;  // scans without a measurement before the first re-sighting
 constexpr int kResightings = 3;  // scans that see it: start a copy, confirm it, then pair through the alias
 
-// A robot standing still at the origin, heading +x, with an exact start and almost exact odometry. Its sensor
-// sees 20 m ahead, so a prior landmark at 19.5 m is a candidate but outside the view that gives negative
-// evidence (19 m): it is neither seen nor missed for kQuietScans scans. The last kResightings scans see a
-// point 0.7 m short of it (7 sigma of range: outside every gate, as after a loop's drift).
+// A robot standing still at the origin (testing::standing_robot). Its sensor sees 20 m ahead, so a prior
+// landmark at 19.5 m is a candidate but outside the view that gives negative evidence (19 m): it is neither
+// seen nor missed for kQuietScans scans. The last kResightings scans see a point 0.7 m short of it (7 sigma of
+// range: outside every gate, as after a loop's drift).
 Scenario standing_world() {
-  Scenario s;
-  s.sensor.max_range_m = 20.0;
-  s.sensor.fov_rad = kPi;
-  s.sensor.sigma_range_m = 0.1;
-  s.sensor.sigma_bearing_rad = 0.01;
-  for (int k = 0; k < kQuietScans + kResightings; ++k) {
-    ScenarioStep step;
-    step.time_s = 0.5 * k;
-    step.has_scan = true;
-    step.truth_pose = Pose2{};
-    if (k >= kQuietScans) step.measurements = {{18.8, 0.0, std::numeric_limits<float>::quiet_NaN(), 0}};
-    s.steps.push_back(step);
-  }
-  return s;
+  std::vector<std::vector<Vec2>> scans(kQuietScans);
+  scans.resize(kQuietScans + kResightings, {Vec2(18.8, 0.0)});
+  return testing::standing_robot(scans);
 }
 
 // Old landmarks at (19.5, y) for each y, last paired at seen_scan.

@@ -1,37 +1,17 @@
 // Only confirmed landmarks steer the pose (FastSlamOptions::pose_from_confirmed, issue 12): a measurement
 // paired with a provisional landmark updates it, but moves the pose and weighs the particle exactly as an
 // unpaired measurement would. A confirmed landmark steers as before. Both filter versions.
-#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/engine/fastslam.h"
+#include "test_support.h"
 #include "variants/association/jcbb.h"
 #include "variants/maps/vector_map.h"
 
 namespace arbor {
 namespace {
-
-// A robot standing at the origin, heading +x, whose odometry leaves the pose a few centimetres and
-// hundredths of a radian uncertain per scan, so that a pairing can move it. One measurement per scan.
-Scenario standing_scans(const std::vector<Vec2>& range_bearings) {
-  Scenario s;
-  s.sensor.max_range_m = 20.0;
-  s.sensor.fov_rad = kPi;
-  s.sensor.sigma_range_m = 0.1;
-  s.sensor.sigma_bearing_rad = 0.01;
-  for (std::size_t k = 0; k < range_bearings.size(); ++k) {
-    ScenarioStep step;
-    step.time_s = 0.5 * static_cast<double>(k);
-    step.has_scan = true;
-    step.truth_pose = Pose2{};
-    const Vec2& z = range_bearings[k];
-    step.measurements = {{z.x(), z.y(), std::numeric_limits<float>::quiet_NaN(), 0}};
-    s.steps.push_back(step);
-  }
-  return s;
-}
 
 struct SteeringOutcome {
   std::vector<Pose2> poses;            // every particle's, at the end
@@ -41,7 +21,9 @@ struct SteeringOutcome {
 
 SteeringOutcome run_steering(const std::vector<Vec2>& range_bearings, FilterVersion version, bool pose_from_confirmed,
                              const VectorMap* prior = nullptr) {
-  const Scenario scenario = standing_scans(range_bearings);
+  std::vector<std::vector<Vec2>> scans;
+  for (const Vec2& z : range_bearings) scans.push_back({z});
+  const Scenario scenario = testing::standing_robot(scans);  // one measurement per scan
   FastSlamOptions options;
   options.version = version;
   options.particles = 4;

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
@@ -22,6 +24,28 @@ inline Scenario simulated_world(std::uint64_t seed, int scans, double clutter = 
   o.clutter_rate = clutter;
   o.controls_per_scan = controls_per_scan;
   return simulate(o);
+}
+
+// A robot standing at the origin, heading +x, scanning every 0.5 s: scans[k] holds scan k's measurements as
+// (range, bearing), each labelled true landmark 0. Its sensor sees 20 m over a half circle (sigma 0.1 m and
+// 0.01 rad). The start is exact; the odometry has the default noise, a few centimetres and about 2 degrees
+// per scan standing still, so a pairing can move FastSLAM 2.0's proposal.
+inline Scenario standing_robot(const std::vector<std::vector<Vec2>>& scans) {
+  Scenario s;
+  s.sensor.max_range_m = 20.0;
+  s.sensor.fov_rad = kPi;
+  s.sensor.sigma_range_m = 0.1;
+  s.sensor.sigma_bearing_rad = 0.01;
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    ScenarioStep step;
+    step.time_s = 0.5 * static_cast<double>(k);
+    step.has_scan = true;
+    step.truth_pose = Pose2{};
+    for (const Vec2& z : scans[k])
+      step.measurements.push_back({z.x(), z.y(), std::numeric_limits<float>::quiet_NaN(), 0});
+    s.steps.push_back(step);
+  }
+  return s;
 }
 
 // A FastSLAM run with the default map and association (naive, known) and these settings.
