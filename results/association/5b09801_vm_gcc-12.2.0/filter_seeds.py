@@ -38,25 +38,15 @@ def bootstrap(runs, draws=2000):
     return np.percentile(values, [2.5, 97.5])
 
 
-def scan_labels(scenario):
-    """Per scan, the true landmark (or 'clutter') of each measurement."""
-    scans = []
-    for line in scenario.read_text().splitlines():
-        if line.startswith("scan"):
-            scans.append([])
-        elif line.startswith("z "):
-            scans[-1].append(line.split()[4])
-    return scans
-
-
-def duplicate_counts(run, scans, window=100):
-    """Per window of steps: [duplicates started, pairings with a duplicate, pairings with the original]."""
+def duplicate_counts(run, steps, window=100):
+    """Per window of steps: [duplicates started, pairings with a duplicate, pairings with the original].
+    steps: ar.read_scenario_steps of the run's scenario (true id per measurement, -1 for clutter)."""
     label, original = {}, {}
-    counts = np.zeros(((len(scans) - 1) // window + 1, 3), dtype=int)
+    counts = np.zeros(((len(steps) - 1) // window + 1, 3), dtype=int)
     for line in (run / "associations.csv").read_text().splitlines()[1:]:
         step, measurement, landmark = map(int, line.split(","))
-        truth, row = scans[step][measurement], counts[step // window]
-        if landmark < 0 or truth == "clutter":
+        truth, row = steps[step][2][measurement], counts[step // window]
+        if landmark < 0 or truth == -1:
             label.setdefault(landmark, truth)
             continue
         if landmark not in label:
@@ -78,11 +68,12 @@ def error_profile(out, name):
         scenario = out / "scenarios" / f"{world}-{clutter}-{seed}.scn"
         # trajectory.tum starts at the initial pose, the scenario's truth after the first step.
         path = ar.read_tum(run / "trajectory.tum")[["x", "y"]].to_numpy()[1:]
-        truth = ar.read_scenario_truth(scenario)[0][["x", "y"]].to_numpy()
+        steps = ar.read_scenario_steps(scenario)
+        truth = np.array([pose[:2] for _, pose, _ in steps if pose is not None])
         rotation, translation = ar.align_se2(path, truth)
         errors.append(np.hypot(*(path - truth).T))
         errors_aligned.append(np.hypot(*(path @ rotation.T + translation - truth).T))
-        duplicates = duplicates + duplicate_counts(run, scan_labels(scenario))
+        duplicates = duplicates + duplicate_counts(run, steps)
     return np.mean(errors, axis=0), np.mean(errors_aligned, axis=0), len(errors), duplicates
 
 
