@@ -230,6 +230,7 @@ class FastSlam {
     std::vector<LandmarkId> erased;            // removed by this scan's negative evidence
     std::vector<LandmarkId> redirected;        // per measurement: the alias it was paired through, or kNoLandmark
     std::vector<LandmarkId> retired;           // aliases whose original this scan paired directly
+    bool provisional_steers = false;           // FastSlamOptions::provisional_steer_min: they steer this scan
   };
 
   void resample() {
@@ -361,6 +362,10 @@ class FastSlam {
       }
       s.touched_of[k] = t;
     }
+    // FastSlamOptions::provisional_steer_min: every pairing of the scan is provisional, and there are enough.
+    const int min = options_.provisional_steer_min;
+    s.provisional_steers = min > 0 && static_cast<int>(s.touched.size()) >= min &&
+                           std::none_of(s.touched.begin(), s.touched.end(), [](const Touched& t) { return t.was_confirmed; });
   }
 
   // Montemerlo et al. 2003, §3: the proposal N(mu, Sigma) folds each paired measurement into the prediction
@@ -374,7 +379,7 @@ class FastSlam {
     for (std::size_t k = 0; k < measurements.size(); ++k) {
       if (s.touched_of[k] < 0) continue;
       const Touched& t = s.touched[s.touched_of[k]];
-      if (!steers_pose(t)) {
+      if (!steers_pose(t, s)) {
         log_weight += log_likelihood_unpaired_;
         continue;
       }
@@ -402,8 +407,11 @@ class FastSlam {
   }
 
   // FastSlamOptions::pose_from_confirmed: a pairing with a landmark that was provisional before this scan
-  // counts, for the pose and the weight, as an unpaired measurement.
-  bool steers_pose(const Touched& t) const { return !pose_from_confirmed_ || t.was_confirmed; }
+  // counts, for the pose and the weight, as an unpaired measurement, unless the scan pairs enough of them
+  // (FastSlamOptions::provisional_steer_min).
+  bool steers_pose(const Touched& t, const Scratch& s) const {
+    return !pose_from_confirmed_ || t.was_confirmed || s.provisional_steers;
+  }
 
   // Landmark EKF updates at the drawn pose (Montemerlo 2002, eq. 8-11; Joseph form). With weight (FastSLAM
   // 1.0) returns the log importance weight, the product of the measurement likelihoods.
@@ -421,7 +429,7 @@ class FastSlam {
       Mat2 S = H_m * lm.cov * H_m.transpose();
       if (redirected(s, k)) S += H_x * loop_drift_ * H_x.transpose();
       const double ll = log_likelihood(nu, S + R_, &scale);
-      if (weight) log_weight += steers_pose(t) ? ll : log_likelihood_unpaired_;
+      if (weight) log_weight += steers_pose(t, s) ? ll : log_likelihood_unpaired_;
       const Mat2 R = scale * R_;
       const Mat2 Q = H_m * lm.cov * H_m.transpose() + R;
       const Mat2 K = lm.cov * H_m.transpose() * Q.inverse();

@@ -27,6 +27,8 @@ std::string FastSlamOptions::validate() const {
   if (!(student_dof > 0.0 && student_dof <= 1e6)) return fmt::format("Student-t dof must lie in (0, 1e6] (got {})", student_dof);
   if (relocalize && relocalize_min_pairings < 3)
     return fmt::format("relocalisation needs at least 3 pairings to trust a pose (got {})", relocalize_min_pairings);
+  if (provisional_steer_min < 0)
+    return fmt::format("provisional steer minimum must be 0 (never) or positive (got {})", provisional_steer_min);
   if (dormant_scans < 1) return fmt::format("dormant scans must be at least 1 (got {})", dormant_scans);
   if (!(loop_drift_m > 0.0 && std::isfinite(loop_drift_m)))
     return fmt::format("loop drift must be positive and finite (got {} m)", loop_drift_m);

@@ -86,6 +86,12 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
                 "Only confirmed landmarks steer the pose: a measurement paired with a provisional landmark updates "
                 "it, but moves the pose and weighs the particle as an unpaired measurement would (for cluttered "
                 "sensors); not with --assoc known");
+  cmd.add_option("--provisional-steer-min", config.options.provisional_steer_min,
+                  "With --pose-from-confirmed, a scan that pairs no confirmed landmark but at least this many "
+                  "provisional ones lets them steer the pose (the second sighting of an unmapped area, above all the "
+                  "start; 0: never)")
+      ->check(at_least(0))
+      ->capture_default_str();
   cmd.add_flag("--relocalize", config.options.relocalize,
                 "Relocalise a lost robot: when the best particle pairs under half a scan, search its settled map "
                 "with the pose-free locality tree; a pose that pairs more, found again at the next scan, re-seeds "

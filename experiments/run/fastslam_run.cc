@@ -131,6 +131,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"log_odds_confirm", config.options.log_odds_confirm},
                  {"provisional_scans", config.options.provisional_scans},
                  {"pose_from_confirmed", config.options.pose_from_confirmed},
+                 {"provisional_steer_min", config.options.provisional_steer_min},
                  {"relocalize", config.options.relocalize},
                  {"relocalize_min_pairings", config.options.relocalize_min_pairings},
                  {"relocalize_accept", config.options.association.accept_explained},
