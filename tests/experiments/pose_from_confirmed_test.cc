@@ -51,6 +51,19 @@ SteeringOutcome run_steering(const std::vector<Vec2>& range_bearings, FilterVers
   return run_scans(scans, version, pose_from_confirmed, 0, prior);
 }
 
+// A prior map of one confirmed landmark, id 0.
+VectorMap confirmed_landmark_at(const Vec2& position) {
+  VectorMap prior;
+  Landmark lm;
+  lm.id = 0;
+  lm.mean = position;
+  lm.cov = 0.01 * Mat2::Identity();
+  lm.log_odds = 8.0f;
+  lm.confirmed = true;
+  prior.insert(lm);
+  return prior;
+}
+
 bool same_particles(const SteeringOutcome& a, const SteeringOutcome& b) {
   for (std::size_t i = 0; i < a.poses.size(); ++i)
     if (a.poses[i].vector() != b.poses[i].vector() || a.log_weights[i] != b.log_weights[i]) return false;
@@ -81,14 +94,7 @@ TEST_P(PoseFromConfirmed, AProvisionalLandmarkMovesNothingThatANewOneWouldNot) {
 // A landmark of a prior map is confirmed: the option changes nothing, and the pairing still steers.
 TEST_P(PoseFromConfirmed, AConfirmedLandmarkStillSteers) {
   const FilterVersion version = GetParam();
-  VectorMap prior;
-  Landmark lm;
-  lm.id = 0;
-  lm.mean = Vec2(10.0, 0.0);
-  lm.cov = 0.01 * Mat2::Identity();
-  lm.log_odds = 8.0f;
-  lm.confirmed = true;
-  prior.insert(lm);
+  const VectorMap prior = confirmed_landmark_at(Vec2(10.0, 0.0));
   const std::vector<Vec2> off_range{{10.15, 0.0}};
   const SteeringOutcome with = run_steering(off_range, version, true, &prior);
   ASSERT_EQ(with.decisions, (std::vector<LandmarkId>{0}));
@@ -102,8 +108,9 @@ INSTANTIATE_TEST_SUITE_P(BothVersions, PoseFromConfirmed,
 
 // Three landmarks seen again together, each a little off: a scan that pairs no confirmed landmark but
 // provisional_steer_min provisional ones lets them steer after all (the start of every run is such a scan);
-// one that pairs fewer is held as before. FastSLAM 2.0 only: 1.0 associates at its motion draw, and the standing robot's
-// 2 degrees of heading noise leave some draws with the three sightings not jointly compatible.
+// one that pairs fewer is held as before. FastSLAM 2.0 only: 1.0 associates at its motion draw, and the
+// standing robot's 2 degrees of heading noise leave some draws with the three sightings not jointly
+// compatible.
 TEST(PoseFromConfirmedSteerMin, EnoughProvisionalPairingsInOneScanSteer) {
   const FilterVersion version = FilterVersion::kFastSlam2;
   const std::vector<std::vector<Vec2>> scans{{{3.0, 0.0}, {2.5, 0.5}, {3.5, -0.4}},
@@ -119,14 +126,7 @@ TEST(PoseFromConfirmedSteerMin, EnoughProvisionalPairingsInOneScanSteer) {
 // A scan that pairs a confirmed landmark steers by it alone: its provisional pairings are held, however many.
 TEST(PoseFromConfirmedSteerMin, ProvisionalPairingsBesideAConfirmedOneAreHeld) {
   const FilterVersion version = FilterVersion::kFastSlam2;
-  VectorMap prior;
-  Landmark lm;
-  lm.id = 0;
-  lm.mean = Vec2(4.0, 0.0);
-  lm.cov = 0.01 * Mat2::Identity();
-  lm.log_odds = 8.0f;
-  lm.confirmed = true;
-  prior.insert(lm);
+  const VectorMap prior = confirmed_landmark_at(Vec2(4.0, 0.0));
   const std::vector<std::vector<Vec2>> scans{{{4.0, 0.0}, {3.0, 0.3}, {2.5, 0.8}, {3.5, -0.5}},
                                              {{4.02, 0.0}, {3.05, 0.305}, {2.55, 0.805}, {3.55, -0.495}}};
   const SteeringOutcome held = run_scans(scans, version, true, 0, &prior);
