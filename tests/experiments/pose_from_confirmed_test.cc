@@ -17,7 +17,7 @@ namespace {
 struct SteeringOutcome {
   std::vector<Pose2> poses;            // every particle's, at the end
   std::vector<double> log_weights;     // likewise
-  std::vector<LandmarkId> decisions;   // particle 0's decision for the measurement, scan by scan
+  std::vector<LandmarkId> decisions;   // particle 0's decisions, measurement by measurement, scan by scan
 };
 
 // Every scan's measurements as (range, bearing); particle 0's decisions are listed scan after scan.

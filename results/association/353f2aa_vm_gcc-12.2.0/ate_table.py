@@ -2,10 +2,14 @@
 """The README's table: JCBB, the cluttered-sensor combination (--pose-from-confirmed --close-loops --chi2 0.999)
 before and with the start rule (--provisional-steer-min 3), each against known association without its gate on
 the same runs (world seed, filter seed), aligned and before alignment. Run from the repository root."""
-import csv
-import math
 import os
-import statistics
+import pathlib
+import sys
+
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "5b09801_vm_gcc-12.2.0"))
+from filter_seeds import read  # noqa: E402  the csv format of filter_seeds.sh, defined once
 
 HERE = os.path.relpath(os.path.dirname(os.path.abspath(__file__)))
 A = "results/association/"
@@ -23,12 +27,7 @@ ROWS = [
     ("worlds 41-80: rooms, clutter 5", "rooms-c5", F14, F14, F14, HERE + "/csv/fresh/"),
     ("worlds 41-80: clustered, clutter 5", "clustered-c5", F14, F14, F14, HERE + "/csv/fresh/"),
 ]
-
-
-def read(path):
-    """(world seed, filter seed) -> (aligned ATE, ATE, F1) from a filter_seeds.sh csv."""
-    with open(path) as f:
-        return {(r[0], r[1]): (float(r[2]), float(r[3]), float(r[4])) for r in csv.reader(f)}
+VARIANTS = ["jcbb", "combination", "rule"]
 
 
 def main():
@@ -37,15 +36,14 @@ def main():
           "| F1: JCBB, with the rule |")
     print("|---|---|---|---|---|---|")
     for name, w, k, j, c, r in ROWS:
-        known, jcbb = read(f"{k}known_nogate-{w}.csv"), read(f"{j}jcbb-{w}.csv")
-        combo, rule = read(f"{c}{COMBINATION}{w}.csv"), read(f"{r}start_rule-{w}.csv")
-        keys = sorted(set(known) & set(jcbb) & set(combo) & set(rule))
-        mean = lambda d, i: statistics.mean(d[x][i] for x in keys)
-        ratio = lambda d, i: mean(d, i) / mean(known, i)
-        geo = lambda d, i: math.exp(statistics.mean(math.log(d[x][i] / known[x][i]) for x in keys))
-        three = lambda f, i: ", ".join(f"{f(d, i):.2f}" for d in (jcbb, combo, rule))
-        print(f"| {name} | {len(keys)} | {three(ratio, 0)} | {three(ratio, 1)} | {three(geo, 1)} "
-              f"| {mean(jcbb, 2):.4f}, {mean(rule, 2):.4f} |")
+        runs = read(f"{k}known_nogate-{w}.csv")
+        for variant, path in zip(VARIANTS, (f"{j}jcbb-{w}.csv", f"{c}{COMBINATION}{w}.csv", f"{r}start_rule-{w}.csv")):
+            runs = runs.merge(read(path), on=["world_seed", "filter_seed"], suffixes=("", "_" + variant))
+        ratio = lambda v, col: runs[f"{col}_{v}"].mean() / runs[col].mean()
+        geo = lambda v, col: np.exp(np.log(runs[f"{col}_{v}"] / runs[col]).mean())
+        three = lambda f, col: ", ".join(f"{f(v, col):.2f}" for v in VARIANTS)
+        print(f"| {name} | {len(runs)} | {three(ratio, 'ate_aligned')} | {three(ratio, 'ate')} | {three(geo, 'ate')} "
+              f"| {runs.f1_jcbb.mean():.4f}, {runs.f1_rule.mean():.4f} |")
 
 
 if __name__ == "__main__":
