@@ -1,7 +1,8 @@
 // `arbor relocalize`: the kidnapped robot (DESIGN.md §4, issue 4 item 6). A robot in a known simulated map
 // loses its pose: NN and JCBB are given a wrong prior (the pose before a large jump) and the map landmarks in
-// range of that prior; the locality tree gets no prior and the whole map. Reports per strategy the success
-// rate, hypotheses and time per call over many trials.
+// range of that prior; the locality tree gets no prior and the whole map. Reports per strategy, over many
+// trials, two success rates (every pairing right; the pose the pairings imply near the truth), hypotheses and
+// time per call.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +24,7 @@
 #include "experiments/sim/simulator.h"
 #include "experiments/sim/world.h"
 #include "variants/association/association_common.h"
+#include "variants/association/rigid_alignment.h"
 #include "variants/association/strategy_list.h"
 
 namespace arbor::cli {
@@ -40,6 +42,10 @@ struct RelocalizeArgs {
   double map_sigma_m = 0.1;
   double accept = 0.0;
   double widen_below = AssociationOptions{}.widen_below;
+  // Three standard deviations of the pose the filter's --relocalize re-seeds its particles around
+  // (FastSlam::kRelocalizeSigma: 0.2 m, 0.03 rad): a pose inside them is one the filter recovers from.
+  double pose_tolerance_m = 0.6;
+  double pose_tolerance_rad = 0.09;
   std::vector<std::string> strategies{"nn", "jcbb", "locality"};
   bool csv = false;
 };
@@ -127,9 +133,39 @@ bool relocalised(const std::vector<LandmarkId>& pairing, const std::vector<Landm
   return correct >= 3 && wrong == 0;
 }
 
+// The pose a pairing implies: the rigid fit of its measured points onto the paired landmarks' map estimates.
+// Needs three pairings, as `relocalised` does; false with fewer.
+bool implied_pose(const AssociationProblem& problem, const std::vector<LandmarkId>& pairing, const KnownMap& map,
+                  Pose2* pose) {
+  std::vector<Vec2> robot, world;
+  for (std::size_t i = 0; i < pairing.size(); ++i) {
+    if (pairing[i] < 0) continue;
+    robot.push_back(range_bearing_inverse(Pose2{}, problem.measurements[i].z));
+    world.push_back(map.mean[pairing[i]]);
+  }
+  return robot.size() >= 3 && association::align_rigid_2d(robot, world, pose);
+}
+
+// Both definitions of success for one answer: every pairing right (`relocalised`), and the pose it implies
+// within the tolerance of the truth. The second is what a filter needs to be found again; the first also
+// fails where a clutter point sits inside the gate of a landmark the scan did not measure, which no search
+// can tell from a measurement of it.
 struct Tally {
   int success = 0;
+  int pose_success = 0;
   std::vector<double> seconds, hypotheses;
+  std::vector<double> position_error_m;  // of the implied poses within the tolerance
+
+  void add(const std::vector<LandmarkId>& pairing, const std::vector<LandmarkId>& truth_ids,
+           const AssociationProblem& problem, const KnownMap& map, const Pose2& truth, const RelocalizeArgs& a) {
+    success += relocalised(pairing, truth_ids);
+    Pose2 pose;
+    if (!implied_pose(problem, pairing, map, &pose)) return;
+    const double error_m = (pose.position() - truth.position()).norm();
+    if (error_m > a.pose_tolerance_m || std::abs(wrap_angle(pose.theta - truth.theta)) > a.pose_tolerance_rad) return;
+    pose_success += 1;
+    position_error_m.push_back(error_m);
+  }
 };
 
 int run_relocalize(const RelocalizeArgs& a) {
@@ -161,7 +197,7 @@ int run_relocalize(const RelocalizeArgs& a) {
   // Pose covariance the prior claims (odometry-sized), far smaller than the jump: the prior is confidently wrong.
   const Mat3 P = Vec3(0.5 * 0.5, 0.5 * 0.5, 0.1 * 0.1).asDiagonal();
   const double gate2 = chi_square_quantile(options.gate_probability, 2);
-  int oracle_success = 0;
+  Tally oracle;
 
   for (int trial = 0; trial < a.trials; ++trial) {
     // A pose with at least `observations` visible landmarks, away from the border.
@@ -227,32 +263,37 @@ int run_relocalize(const RelocalizeArgs& a) {
         }
         tally[s].seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         tally[s].hypotheses.push_back(static_cast<double>(r.stats.hypotheses));
-        tally[s].success += relocalised(r.pairing, truth_ids);
+        tally[s].add(r.pairing, truth_ids, problem, map, truth, a);
       });
     }
-    oracle_success += relocalised(oracle_pairing(whole_map, truth, map, grid, gate2), truth_ids);
+    oracle.add(oracle_pairing(whole_map, truth, map, grid, gate2), truth_ids, whole_map, map, truth, a);
   }
-  if (a.csv) fmt::print("strategy,world,n,m,clutter,trials,success_rate,median_hypotheses,median_time_s,p90_time_s\n");
+  const auto rate = [&](int count) { return static_cast<double>(count) / a.trials; };
+  if (a.csv)
+    fmt::print("strategy,world,n,m,clutter,trials,success_rate,median_hypotheses,median_time_s,p90_time_s,"
+               "pose_success_rate,median_position_error_m\n");
   for (std::size_t s = 0; s < a.strategies.size(); ++s) {
-    const double rate = static_cast<double>(tally[s].success) / a.trials;
+    const Tally& t = tally[s];
     if (a.csv)
-      fmt::print("{},{},{},{},{},{},{:.4f},{},{:.9g},{:.9g}\n", a.strategies[s], a.world, a.landmarks, a.observations,
-                 a.clutter, a.trials, rate, median(tally[s].hypotheses), median(tally[s].seconds),
-                 quantile(tally[s].seconds, 0.9));
+      fmt::print("{},{},{},{},{},{},{:.4f},{},{:.9g},{:.9g},{:.4f},{:.4g}\n", a.strategies[s], a.world, a.landmarks,
+                 a.observations, a.clutter, a.trials, rate(t.success), median(t.hypotheses), median(t.seconds),
+                 quantile(t.seconds, 0.9), rate(t.pose_success), median(t.position_error_m));
     else
-      fmt::print("{:<10} n={} m={} clutter={} trials={} success={:.3f} median_hypotheses={} median_time_s={:.6f} "
-                 "p90_time_s={:.6f}\n",
-                 a.strategies[s], a.landmarks, a.observations, a.clutter, a.trials, rate,
-                 median(tally[s].hypotheses), median(tally[s].seconds), quantile(tally[s].seconds, 0.9));
+      fmt::print("{:<10} n={} m={} clutter={} trials={} success={:.3f} pose_success={:.3f} median_position_error_m="
+                 "{:.3f} median_hypotheses={} median_time_s={:.6f} p90_time_s={:.6f}\n",
+                 a.strategies[s], a.landmarks, a.observations, a.clutter, a.trials, rate(t.success),
+                 rate(t.pose_success), median(t.position_error_m), median(t.hypotheses), median(t.seconds),
+                 quantile(t.seconds, 0.9));
   }
   // The ceiling: what pairing at the true pose achieves on the same trials (no search, so no time).
-  const double oracle_rate = static_cast<double>(oracle_success) / a.trials;
   if (a.csv)
-    fmt::print("oracle,{},{},{},{},{},{:.4f},0,0,0\n", a.world, a.landmarks, a.observations, a.clutter, a.trials,
-               oracle_rate);
+    fmt::print("oracle,{},{},{},{},{},{:.4f},0,0,0,{:.4f},{:.4g}\n", a.world, a.landmarks, a.observations, a.clutter,
+               a.trials, rate(oracle.success), rate(oracle.pose_success), median(oracle.position_error_m));
   else
-    fmt::print("{:<10} n={} m={} clutter={} trials={} success={:.3f} (gated NN at the true pose: the data's ceiling)\n",
-               "oracle", a.landmarks, a.observations, a.clutter, a.trials, oracle_rate);
+    fmt::print("{:<10} n={} m={} clutter={} trials={} success={:.3f} pose_success={:.3f} median_position_error_m="
+               "{:.3f} (gated NN at the true pose: the data's ceiling)\n",
+               "oracle", a.landmarks, a.observations, a.clutter, a.trials, rate(oracle.success),
+               rate(oracle.pose_success), median(oracle.position_error_m));
   return 0;
 }
 
@@ -264,7 +305,8 @@ void add_relocalize_command(CLI::App& app, CommandAction* action) {
       "relocalize",
       "Kidnapped-robot experiment in a known simulated map: NN and JCBB get a wrong pose prior (the pose before a "
       "jump) and the landmarks in range of it; the locality tree gets no prior and the whole map. Success = at "
-      "least three correct pairings and no wrong one. Prints success rate, median hypotheses and time per strategy.");
+      "least three correct pairings and no wrong one; pose success = the pose the pairings imply within the tolerance "
+      "of the truth. Prints both rates, median hypotheses and time per strategy.");
   cmd->add_option("--world", args->world, "uniform, clustered or rooms")->capture_default_str();
   cmd->add_option("--landmarks", args->landmarks, "Map size n")->capture_default_str();
   cmd->add_option("--observations", args->observations, "Measured landmarks per scan m (the nearest visible)")
@@ -287,6 +329,14 @@ void add_relocalize_command(CLI::App& app, CommandAction* action) {
                   "Pose-free search: search again, keeping more hypotheses, when the winner explains less than this "
                   "fraction of the scan (0: never)")
       ->check(within(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--pose-tolerance-m", args->pose_tolerance_m,
+                  "Pose success: the implied pose's position within this of the truth [m]")
+      ->check(at_least(0.0))
+      ->capture_default_str();
+  cmd->add_option("--pose-tolerance-rad", args->pose_tolerance_rad,
+                  "Pose success: the implied pose's heading within this of the truth [rad]")
+      ->check(at_least(0.0))
       ->capture_default_str();
   cmd->add_option("--assoc", args->strategies, "Strategies to compare")->delimiter(',')->capture_default_str();
   cmd->add_flag("--csv", args->csv, "CSV output with a header line");
