@@ -96,11 +96,14 @@ Scenario simulate(const SimulationOptions& o) {
     }
     if (k > 0) {
       // Steer towards the next corner with a bounded turn rate, chosen once per scan interval; the robot moves
-      // along the exact arc, read by the odometer K times.
+      // along the exact arc, read by the odometer K times. The turn cancels the heading error in one interval
+      // (rate = error / dt). Twice that gain, which the simulator had until the change that wrote this, maps
+      // an error e to -e at the next scan: after the first corner the robot swung +-0.095 rad about every edge
+      // each half second without end, and every trajectory plot showed the zigzag.
       if ((truth.position() - corners[target]).norm() < 1.5 * o.speed_mps * o.dt_s) target = (target + 1) % 4;
       const Vec2 to_target = corners[target] - truth.position();
       const double heading_error = wrap_angle(std::atan2(to_target.y(), to_target.x()) - truth.theta);
-      const double omega = std::clamp(2.0 * heading_error / o.dt_s, -o.max_turn_rate_radps, o.max_turn_rate_radps);
+      const double omega = std::clamp(heading_error / o.dt_s, -o.max_turn_rate_radps, o.max_turn_rate_radps);
       for (int c = 0; c < K; ++c) {
         RandomStream odometer(o.seed, k, c + 1, RandomPurpose::kSimulation);
         const Pose2 next = velocity_apply(truth, Vec3(o.speed_mps, omega, dt), nullptr, nullptr);
