@@ -107,7 +107,7 @@ TEST(Cli, RelocalizeReportsTheCeilingAtTheTruePose) {
 
 // steps.csv marks the scan where --relocalize re-seeded the particles, so a study can tell a recovery from a
 // drift that happened to end near the truth. Measured: the robot is carried away at scan 200 and re-seeded
-// once, at scan 201; the same run without --relocalize marks nothing.
+// once, at scan 204; the same run without --relocalize marks nothing.
 TEST(Cli, StepsCsvMarksTheScanThatRelocalized) {
   const std::string dir = testing::scratch_dir("cli_relocalized");
   const auto sim = run_command(testing::arbor_binary() + " simulate --steps 260 --kidnap 100 --out " + dir + "/w.scn");

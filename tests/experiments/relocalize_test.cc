@@ -73,18 +73,20 @@ TEST(Relocalize, ARobotThatIsNotLostIsNeverReseeded) {
 }
 
 // A robot that is not lost but explores ground its map does not cover pairs little with its settled landmarks,
-// so it searches. In the uniform world of seed 20 (the kidnap study's plain run) a coincidence 70 m away paired
-// 5 of 7 and then 5 of 9 measurements in scans 282 and 283, which see the same landmarks, so the second
-// confirmed the first and the robot was re-seeded there (ATE 0.06 -> 27.9 m), with the search that widens and
-// pairs again at the found pose. That pose pairs a quarter of the 20-22 settled landmarks the map puts in its
-// view; the negative-evidence check (explains_enough_in_view) refuses it.
+// so it searches. In the clustered world of seed 3, where many clusters look alike, the search finds a
+// coincidence 65 m away at scan 222 that the next scan confirms; without the negative-evidence check
+// (explains_enough_in_view, measured with its threshold set to 0) the particles are re-seeded there, at
+// scans 232 (back) and 240 (away again) too, and the ATE goes from 4.7 to 30.8 m. With it, nothing is
+// re-seeded. (On the simulator before d43e3e0 the case was the uniform world of seed 20, whose robot no longer
+// meets that coincidence.)
 TEST(Relocalize, ACoincidenceThatLeavesMostOfItsMappedViewUnseenIsRefused) {
   SimulationOptions o;
-  o.seed = 20;
-  o.world.seed = 20;
+  o.seed = 3;
+  o.world.seed = 3;
+  o.world.kind = WorldKind::kClustered;
   const Scenario scenario = simulate(o);
-  const Outcome plain = run(scenario, false, 2, 20);
-  const Outcome guarded = run(scenario, true, 2, 20);
+  const Outcome plain = run(scenario, false, 2, 3);
+  const Outcome guarded = run(scenario, true, 2, 3);
   EXPECT_EQ(guarded.relocalizations, 0);
   EXPECT_EQ(guarded.error_m, plain.error_m);
 }
