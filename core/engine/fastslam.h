@@ -690,8 +690,11 @@ class FastSlam {
     if (!pending_correction_ && 2 * best.step_paired_settled >= m) return;
     AssociationProblem& problem = relocalize_problem_;
     begin_problem(step.measurements, Mat3::Zero(), &problem);
+    int in_view_here = 0;  // settled landmarks the particle's own pose predicts well inside the view
     best.map.for_each([&](const Landmark& lm) {
-      if (lm.confirmed && settled(lm)) problem.candidates.push_back(candidate(lm, best.pose));
+      if (!lm.confirmed || !settled(lm)) return;
+      problem.candidates.push_back(candidate(lm, best.pose));
+      in_view_here += in_evidence_view(problem.candidates.back().z_hat);
     });
     Pose2 found;
     const int pairings = problem.candidates.size() < 2 ? 0 : relocalizer_(problem, &found);
@@ -699,10 +702,16 @@ class FastSlam {
       return (a.position() - b.position()).norm() <= kRelocalizeAgreementM &&
              std::abs(wrap_angle(a.theta - b.theta)) <= kRelocalizeAgreementRad;
     };
-    if (pairings < options_.relocalize_min_pairings || pairings < best.step_paired_settled + kRelocalizeMargin ||
-        near(found, best.pose) || !explains_enough_in_view(best, found, pairings) ||
-        scan_evidence(best, found, pairings) <
-            scan_evidence(best, best.pose, best.step_paired_settled) + kRelocalizeMargin) {
+    const auto refused = [&] {
+      if (pairings < options_.relocalize_min_pairings || pairings < best.step_paired_settled + kRelocalizeMargin ||
+          near(found, best.pose))
+        return true;
+      const int in_view_found = settled_in_view(best, found);
+      return !explains_enough_in_view(pairings, in_view_found) ||
+             scan_evidence(pairings, in_view_found) <
+                 scan_evidence(best.step_paired_settled, in_view_here) + kRelocalizeMargin;
+    };
+    if (refused()) {
       pending_correction_.reset();
       return;
     }
@@ -738,8 +747,8 @@ class FastSlam {
   // and leaves most of what the map puts in view unseen; scans that see the same landmarks repeat it, so the
   // next scan's confirmation cannot catch it (uniform world 20 of the simulator before d43e3e0: 5 of 20-22,
   // twice, 70 m away; now clustered world 3).
-  bool explains_enough_in_view(const ParticleState& best, const Pose2& found, int pairings) const {
-    return pairings >= kRelocalizeMinExplainedInView * settled_in_view(best, found);
+  static bool explains_enough_in_view(int pairings, int in_view) {
+    return pairings >= kRelocalizeMinExplainedInView * in_view;
   }
 
   int settled_in_view(const ParticleState& best, const Pose2& pose) const {
@@ -760,9 +769,7 @@ class FastSlam {
   // to 1). A kidnapped robot's believed pose misses what it predicts. With this check, recovery within 10
   // scans of a kidnap is unchanged over 40 seeds of uniform, rooms and clustered worlds, and none of the runs
   // without a kidnap is re-seeded away from the truth (results/association/d43e3e0_vm_gcc-12.2.0).
-  int scan_evidence(const ParticleState& best, const Pose2& pose, int pairings) const {
-    return pairings - std::max(0, settled_in_view(best, pose) - pairings);
-  }
+  static int scan_evidence(int pairings, int in_view) { return pairings - std::max(0, in_view - pairings); }
 
   static constexpr int kRelocalizeSettledScans = 10;
   static constexpr int kRelocalizeMargin = 3;
