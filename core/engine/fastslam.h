@@ -687,7 +687,10 @@ class FastSlam {
       if (pending_correction_ && scan_index_ - pending_scan_ > kRelocalizeConfirmScans) pending_correction_.reset();
       return;
     }
-    if (!pending_correction_ && 2 * best.step_paired_settled >= m) return;
+    const bool lost = 2 * best.step_paired_settled < m;
+    if (lost && !lost_since_scan_) lost_since_scan_ = scan_index_;
+    else if (!lost && !pending_correction_) lost_since_scan_.reset();
+    if (!pending_correction_ && !lost) return;
     AssociationProblem& problem = relocalize_problem_;
     begin_problem(step.measurements, Mat3::Zero(), &problem);
     int in_view_here = 0;  // settled landmarks the particle's own pose predicts well inside the view
@@ -727,6 +730,8 @@ class FastSlam {
     ParticleState source = best;
     // This scan's pose was recorded before the search; the trajectory should show where the scan was taken.
     source.history.replace_newest({step.time_s, found});
+    forget_landmarks_started_lost(source);
+    lost_since_scan_.reset();
     const Mat3 covariance = kRelocalizeSigma.cwiseAbs2().asDiagonal();
     for (auto& p : particles_) {
       p = source;
@@ -741,6 +746,29 @@ class FastSlam {
   }
 
   bool settled(const Landmark& lm) const { return scan_index_ - lm.born_scan >= kRelocalizeSettledScans; }
+
+  // A re-seeded particle forgets the landmarks it started while lost (since the first scan of the current
+  // streak of scans that paired under half with settled landmarks): its wrong pose put them where they are,
+  // as copies of what the robot saw. Kept, they settle, and a later search can pair a scan with them and
+  // carry the robot back into the wrong frame (clustered world 8, kidnapped: re-seeded twice more after a
+  // right recovery, 2.2 m off at the end; with this, 0.03 m). The removal is recorded as this scan's
+  // negative evidence, so the decisions replay to the same map.
+  void forget_landmarks_started_lost(ParticleState& p) const {
+    const std::int32_t since = lost_since_scan_.value_or(scan_index_);
+    StepDecisions decisions = p.decisions.newest();
+    ARBOR_CHECK(decisions.step == step_index_, "the re-seeded particle recorded no decisions for step {}", step_index_);
+    const std::size_t kept = decisions.erased.size();
+    p.map.for_each([&](const Landmark& lm) {
+      if (lm.born_scan >= since) decisions.erased.push_back(lm.id);
+    });
+    if (decisions.erased.size() == kept) return;
+    for (std::size_t k = kept; k < decisions.erased.size(); ++k) p.map.erase(decisions.erased[k]);
+    std::erase_if(p.aliases, [&](const LandmarkAlias& a) {
+      const auto begin = decisions.erased.begin() + static_cast<std::ptrdiff_t>(kept), end = decisions.erased.end();
+      return std::find(begin, end, a.copy) != end || std::find(begin, end, a.original) != end;
+    });
+    p.decisions.replace_newest(std::move(decisions));
+  }
 
   // Negative evidence against a found pose: it must pair at least kRelocalizeMinExplainedInView of the settled
   // landmarks it predicts inside the sensor's evidence view. A coincidence in a well-mapped area pairs a few
@@ -812,6 +840,7 @@ class FastSlam {
   AssociationProblem relocalize_problem_;
   std::optional<Pose2> pending_correction_;  // the last scan's unconfirmed relocalisation, as a correction
   std::int32_t pending_scan_ = 0;            // the scan that found it
+  std::optional<std::int32_t> lost_since_scan_;  // the first scan of the best particle's current lost streak
   std::int64_t relocalizations_ = 0;
 };
 

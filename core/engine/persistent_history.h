@@ -43,6 +43,8 @@ class PersistentHistory {
   }
 
   bool empty() const { return head_ == nullptr; }
+  // The history must not be empty.
+  const Entry& newest() const { return head_->entry; }
   // Oldest first; O(T).
   std::vector<Entry> to_vector() const {
     std::vector<Entry> out;
