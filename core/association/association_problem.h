@@ -116,6 +116,9 @@ struct StrategyTraits {
   bool jointly_compatible = false;
   // stats.hypotheses never exceeds the locality bound n((c+1)^m - 1)/c + 1 (DESIGN.md §4).
   bool locality_bound = false;
+  // Reads the candidates' locality (covisibility) sets. In the filter the engine keeps the sets only for a
+  // strategy that does (or for --relocalize); any other strategy sees them empty.
+  bool reads_localities = false;
 };
 
 // The AssociationStrategy concept. Strategies are stateless apart from their options; solve() is called

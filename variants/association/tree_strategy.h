@@ -17,7 +17,8 @@ class TreeStrategy {
   using Scratch = association::TreeScratch;
   static constexpr std::string_view kName = kRestrictToLocality ? "locality" : "itree";
   // The unrestricted tree is exponential in m: a baseline for the locality tree, not a per-particle strategy.
-  static constexpr StrategyTraits kTraits{.in_filter = kRestrictToLocality, .locality_bound = kRestrictToLocality};
+  static constexpr StrategyTraits kTraits{
+      .in_filter = kRestrictToLocality, .locality_bound = kRestrictToLocality, .reads_localities = kRestrictToLocality};
 
   explicit TreeStrategy(const AssociationOptions& options)
       : settings_(association::make_tree_settings(options, kRestrictToLocality)) {}
