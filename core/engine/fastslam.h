@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -595,10 +596,15 @@ class FastSlam {
     s.nearby.clear();
     s.redirected.clear();
     s.retired.clear();
-    if (p.aliases.empty() || s.erased.empty()) return;
+    drop_aliases_of(p, s.erased);
+  }
+
+  // An alias whose copy or original left the map closes nothing any more.
+  static void drop_aliases_of(ParticleState& p, std::span<const LandmarkId> erased) {
+    if (p.aliases.empty() || erased.empty()) return;
     std::erase_if(p.aliases, [&](const LandmarkAlias& a) {
-      return std::find(s.erased.begin(), s.erased.end(), a.copy) != s.erased.end() ||
-             std::find(s.erased.begin(), s.erased.end(), a.original) != s.erased.end();
+      return std::find(erased.begin(), erased.end(), a.copy) != erased.end() ||
+             std::find(erased.begin(), erased.end(), a.original) != erased.end();
     });
   }
 
@@ -765,11 +771,9 @@ class FastSlam {
       if (lm.born_scan >= since) decisions.erased.push_back(lm.id);
     });
     if (decisions.erased.size() == kept) return;
-    for (std::size_t k = kept; k < decisions.erased.size(); ++k) p.map.erase(decisions.erased[k]);
-    std::erase_if(p.aliases, [&](const LandmarkAlias& a) {
-      const auto begin = decisions.erased.begin() + static_cast<std::ptrdiff_t>(kept), end = decisions.erased.end();
-      return std::find(begin, end, a.copy) != end || std::find(begin, end, a.original) != end;
-    });
+    const std::span<const LandmarkId> forgotten = std::span<const LandmarkId>(decisions.erased).subspan(kept);
+    for (LandmarkId id : forgotten) p.map.erase(id);
+    drop_aliases_of(p, forgotten);
     p.decisions.replace_newest(std::move(decisions));
   }
 
