@@ -121,6 +121,18 @@ TYPED_TEST(StrategyConformance, StaysWithinTheLocalityBoundWhereItPromises) {
   }
 }
 
+// In the filter the engine keeps the candidates' locality sets only for a strategy that says it reads them
+// (StrategyTraits::reads_localities); any other strategy must answer the same without them.
+TYPED_TEST(StrategyConformance, IgnoresLocalitiesUnlessItReadsThem) {
+  if constexpr (TypeParam::kTraits.reads_localities) GTEST_SKIP() << "reads them";
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const GeneratedProblem gen = this->problem(seed);
+    AssociationProblem without = gen.problem;
+    for (auto& c : without.candidates) c.locality = LocalitySet();
+    EXPECT_EQ(this->solve(without).pairing, this->solve(gen.problem).pairing) << "seed " << seed;
+  }
+}
+
 // A strategy that knows the truth finds it; the others find most of it on these well-separated problems.
 TYPED_TEST(StrategyConformance, FindsMostOfTheTruePairings) {
   AssociationCounts total;
