@@ -58,8 +58,18 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
       ->capture_default_str();
   cmd.add_option("--known-gate", config.options.association.known_gate_probability,
                   "With --assoc known, reject (and count) a measurement outside this chi-square gate of the landmark "
-                  "its id names; 1 disables the gate")
+                  "its id names; 1 (the default) disables the gate: known association is the oracle")
       ->check(within(1e-6, 1.0))
+      ->capture_default_str();
+  cmd.add_option("--gate-covariance", choices.gate_covariance,
+                  "Innovation covariance of every gate: particle (each particle's own) or set (plus the weighted "
+                  "spread of the landmark's predicted measurement over the particle set: the drift of a gap)")
+      ->check(CLI::IsMember({"particle", "set"}))
+      ->capture_default_str();
+  cmd.add_option("--roughen", config.options.roughen,
+                  "Regularised resampling: after a resampling each particle's prediction gains the kernel "
+                  "(roughen * h_opt)^2 times the set's pose covariance (Musso et al. 2001); 0 = off, 1 = h_opt")
+      ->check(within(0.0, 10.0))
       ->capture_default_str();
   cmd.add_option("--max-hypotheses", config.options.association.max_hypotheses,
                   "Search budget of JCBB and the interpretation trees per particle and scan; a search that reaches it "
@@ -131,6 +141,8 @@ void apply_run_choices(const RunChoices& choices, RunConfig& config) {
     throw InputError("", 0, "motion-sampling", "unknown motion sampling " + choices.motion_sampling);
   if (!from_string(choices.likelihood, &config.options.likelihood))
     throw InputError("", 0, "likelihood", "unknown likelihood " + choices.likelihood);
+  if (!from_string(choices.gate_covariance, &config.options.gate_covariance))
+    throw InputError("", 0, "gate-covariance", "unknown gate covariance " + choices.gate_covariance);
 }
 
 namespace {
