@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -116,6 +117,7 @@ class FastSlam {
       particles_[i].history.push({scenario.start_time_s, pose});
     }
     weights_.assign(options.particles, 1.0 / options.particles);
+    if (options.gate_covariance == GateCovariance::kSet) predicted_.resize(options.particles);
   }
 
   // Processes one step: resample if the previous step left N_eff low, then predict and (with a scan)
@@ -129,12 +131,30 @@ class FastSlam {
     // scheduling overhead from costing more than the work (61,660 such steps on Victoria Park).
     const bool predict_only = !step.has_scan && options_.motion_sampling == MotionSampling::kPerScan;
     const int grain = predict_only ? 512 : 1;
-    arena_.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(particles_.size()), grain), [&](const auto& range) {
-        Scratch& scratch = scratch_.local();
-        for (int i = range.begin(); i != range.end(); ++i) update_particle(particles_[i], step, i, scratch);
+    const auto for_each_particle = [&](int grain_size, const auto& f) {
+      arena_.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(particles_.size()), grain_size), [&](const auto& range) {
+          Scratch& scratch = scratch_.local();
+          for (int i = range.begin(); i != range.end(); ++i) f(particles_[i], i, scratch);
+        });
       });
-    });
+    };
+    if (options_.gate_covariance == GateCovariance::kSet && step.has_scan && !step.measurements.empty()) {
+      // The set's spread needs every particle's prediction first: two passes with a serial reduction between.
+      for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) {
+        predict_particle(p, step, i);
+        collect_predicted_measurements(p, i, s);
+      });
+      reduce_set_spread();
+      for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) { correct_particle(p, step, i, s); });
+      set_spread_.clear();
+    } else {
+      for_each_particle(grain, [&](ParticleState& p, int i, Scratch& s) {
+        predict_particle(p, step, i);
+        correct_particle(p, step, i, s);
+      });
+    }
+    roughening_kernel_.reset();
     std::vector<double> log_weights(particles_.size());
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       log_weights[i] = particles_[i].log_weight;
@@ -236,6 +256,7 @@ class FastSlam {
   };
 
   void resample() {
+    const PoseEstimate set_before_resampling = options_.roughen > 0.0 ? estimate() : PoseEstimate{};
     RandomStream rng(options_.seed, step_index_, 0, RandomPurpose::kResample);
     const std::vector<int> parents = systematic_resample(weights_, rng.uniform());
     std::vector<ParticleState> next(particles_.size());
@@ -248,6 +269,11 @@ class FastSlam {
     for (auto& p : particles_) p.log_weight = 0.0;
     weights_.assign(particles_.size(), 1.0 / particles_.size());
     stats_.resampled = true;
+    if (options_.roughen > 0.0) {
+      constexpr double d = 3.0;  // the pose's dimension
+      const double h = options_.roughen * std::pow(4.0 / (particles_.size() * (d + 2.0)), 1.0 / (d + 4.0));
+      roughening_kernel_ = Mat3(h * h * set_before_resampling.covariance);
+    }
   }
 
   // How far beyond the sensor's view a pose drawn from N(pose, P) could see: three standard deviations of
@@ -282,16 +308,24 @@ class FastSlam {
     return mean + eig.eigenvectors() * scaled;
   }
 
-  // One particle's step, along Montemerlo et al. 2003 (FastSLAM 2.0, §3-4): predict through the control;
-  // at a scan associate, propose and draw the pose, update and create landmarks, weight, and keep the
-  // existence evidence. Between scans (per-scan sampling) only the prediction runs.
-  void update_particle(ParticleState& p, const ScenarioStep& step, int index, Scratch& s) {
+  // One particle's step, along Montemerlo et al. 2003 (FastSLAM 2.0, §3-4), in two parts: predict through
+  // the control; then, at a scan, associate, propose and draw the pose, update and create landmarks, weight,
+  // and keep the existence evidence. Between scans (per-scan sampling) only the prediction runs.
+  void predict_particle(ParticleState& p, const ScenarioStep& step, int index) const {
     p.step_hypotheses = p.step_tests = 0;
     p.step_budget_exhausted = false;
     p.step_paired_settled = 0;
+    if (roughening_kernel_) p.pose_covariance += *roughening_kernel_;
+    motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
+    // FastSLAM 1.0 draws first and associates at the sample (P = 0); 2.0 associates at the prediction with
+    // its covariance, because its proposal is drawn only after association (DESIGN.md §4).
+    if (options_.version == FilterVersion::kFastSlam1 && step.has_scan && !step.measurements.empty())
+      draw_pose(p, index, RandomPurpose::kMotion);
+  }
+
+  void correct_particle(ParticleState& p, const ScenarioStep& step, int index, Scratch& s) {
     const bool fastslam2 = options_.version == FilterVersion::kFastSlam2;
     const bool per_control = options_.motion_sampling == MotionSampling::kPerControl;
-    motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
     if (!step.has_scan || step.measurements.empty()) {
       if (step.has_scan || per_control) draw_pose(p, index, RandomPurpose::kMotion);
       if (step.has_scan) {
@@ -302,9 +336,6 @@ class FastSlam {
       record_pose(p, step);
       return;
     }
-    // FastSLAM 1.0 draws first and associates at the sample (P = 0); 2.0 associates at the prediction with
-    // its covariance, because its proposal is drawn only after association (DESIGN.md §4).
-    if (!fastslam2) draw_pose(p, index, RandomPurpose::kMotion);
     gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
     redirect_aliases(p, s);
@@ -523,6 +554,52 @@ class FastSlam {
     problem->signature_sigma = sensor_.sigma_signature;
   }
 
+  // FastSlamOptions::gate_covariance = set: the measurements this particle predicts for the landmarks it
+  // could see, for reduce_set_spread.
+  void collect_predicted_measurements(const ParticleState& p, int index, Scratch& s) {
+    const ViewMargin margin = uncertainty_margin(p.pose_covariance);
+    gather_nearby(p, p.pose, s, margin.range_m);
+    std::vector<PredictedMeasurement>& out = predicted_[index];
+    out.clear();
+    for (const Landmark& lm : s.nearby) {
+      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean);
+      if (Assoc::kTraits.uses_ground_truth || in_candidate_view(z_hat, margin)) out.push_back({lm.id, z_hat});
+    }
+    s.nearby.clear();
+  }
+
+  // Per landmark, the weighted covariance over the particles that hold it of their predicted measurements
+  // (weights renormalised over those particles; bearings wrapped about the first particle's): by the law of
+  // total covariance, what the mixture's innovation covariance adds to a particle's own. Serial, in particle
+  // order, so the sums are the same whatever the thread count.
+  void reduce_set_spread() {
+    struct Sum {
+      Vec2 reference;
+      double w = 0.0;
+      Vec2 first = Vec2::Zero();
+      Mat2 second = Mat2::Zero();
+    };
+    std::unordered_map<LandmarkId, Sum> sums;
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      for (const PredictedMeasurement& m : predicted_[i]) {
+        auto [it, fresh] = sums.try_emplace(m.id);
+        Sum& sum = it->second;
+        if (fresh) sum.reference = m.z_hat;
+        const Vec2 d = range_bearing_innovation(m.z_hat, sum.reference);
+        sum.w += weights_[i];
+        sum.first += weights_[i] * d;
+        sum.second += weights_[i] * d * d.transpose();
+      }
+    set_spread_.clear();
+    for (const auto& [id, sum] : sums) {
+      if (!(sum.w > 0.0)) continue;
+      const Vec2 mean = sum.first / sum.w;
+      Mat2 spread = sum.second / sum.w - mean * mean.transpose();
+      spread = 0.5 * (spread + spread.transpose());
+      set_spread_.emplace(id, spread);
+    }
+  }
+
   // Landmark lm as an association candidate seen from pose.
   AssociationCandidate candidate(const Landmark& lm, const Pose2& pose) const {
     AssociationCandidate c;
@@ -531,6 +608,8 @@ class FastSlam {
     c.id = lm.id;
     c.truth_label = lm.truth_label;
     c.S = H_m * lm.cov * H_m.transpose() + R_;
+    if (!set_spread_.empty())
+      if (const auto it = set_spread_.find(lm.id); it != set_spread_.end()) c.S += it->second;
     c.position = lm.mean;
     c.position_cov = lm.cov;
     c.signature = lm.signature;
@@ -840,6 +919,15 @@ class FastSlam {
   std::vector<ParticleState> particles_;
   std::vector<double> weights_;
   tbb::enumerable_thread_specific<Scratch> scratch_;
+  // FastSlamOptions::gate_covariance = set: each particle's predicted measurements, and per landmark their
+  // spread over the set; filled and emptied within a scan's step.
+  struct PredictedMeasurement {
+    LandmarkId id;
+    Vec2 z_hat;
+  };
+  std::vector<std::vector<PredictedMeasurement>> predicted_;
+  std::unordered_map<LandmarkId, Mat2> set_spread_;
+  std::optional<Mat3> roughening_kernel_;  // FastSlamOptions::roughen: added at the step after a resampling
   std::int64_t step_index_ = 0;
   std::int32_t scan_index_ = 0;  // scans before this step: a landmark's born_scan
   double last_n_eff_ = 0.0;

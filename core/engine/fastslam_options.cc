@@ -32,6 +32,7 @@ std::string FastSlamOptions::validate() const {
   if (dormant_scans < 1) return fmt::format("dormant scans must be at least 1 (got {})", dormant_scans);
   if (!(loop_drift_m > 0.0 && std::isfinite(loop_drift_m)))
     return fmt::format("loop drift must be positive and finite (got {} m)", loop_drift_m);
+  if (!(roughen >= 0.0 && roughen <= 10.0)) return fmt::format("roughening must lie in [0, 10] (got {})", roughen);
   const double k = association.known_gate_probability;
   if (!(k > 0.0 && k <= 1.0)) return fmt::format("known-association gate probability must lie in (0, 1] (got {})", k);
   return "";

@@ -18,6 +18,11 @@ enum class FilterVersion { kFastSlam1, kFastSlam2 };
 enum class MotionSampling { kPerScan, kPerControl };
 // The measurement likelihood in the weights, the proposal and the landmark updates.
 enum class Likelihood { kGaussian, kStudentT };
+// The innovation covariance every gate tests with (known association's, the strategies' individual and joint
+// gates, the new-landmark test): particle: each particle's own (landmark, sensor and, in FastSLAM 2.0, its
+// prediction covariance); set: that plus the weighted spread over the particle set of the landmark's predicted
+// measurement, the drift that no single particle's covariance holds after a stretch without landmarks.
+enum class GateCovariance { kParticle, kSet };
 
 // The command-line names of each option's values (core/enum_names.h).
 template <>
@@ -34,6 +39,10 @@ template <>
 struct NamesOf<Likelihood> {
   static constexpr EnumNames<Likelihood, 2> kTable{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
 };
+template <>
+struct NamesOf<GateCovariance> {
+  static constexpr EnumNames<GateCovariance, 2> kTable{{{GateCovariance::kParticle, "particle"}, {GateCovariance::kSet, "set"}}};
+};
 
 struct FastSlamOptions {
   FilterVersion version = FilterVersion::kFastSlam2;
@@ -43,6 +52,13 @@ struct FastSlamOptions {
   double resample_threshold = 0.5;  // resample when N_eff < threshold * particles
   AssociationOptions association;
   MotionSampling motion_sampling = MotionSampling::kPerScan;
+  GateCovariance gate_covariance = GateCovariance::kParticle;
+  // Regularised (roughened) resampling (Musso, Oudjane & Le Gland 2001): after a resampling, each particle's
+  // prediction covariance gains the kernel h^2 Sigma, Sigma the weighted pose covariance of the set before
+  // resampling and h = roughen * h_opt, h_opt = (4 / (M (d + 2)))^(1 / (d + 4)) the Gaussian kernel's optimal
+  // bandwidth (d = 3). Copies of one parent then part at the next draw, which FastSLAM 2.0's proposal steers
+  // with the scan. 0: off.
+  double roughen = 0.0;
 
   // Student-t with nu degrees of freedom (Lange, Little & Taylor 1989) has the Gaussian's centre and heavy
   // tails: the weights do not collapse on one measurement 4 sigma out, and the proposal and landmark updates

@@ -23,6 +23,7 @@ struct RunChoices {
   std::string filter = "fastslam2";
   std::string motion_sampling = "per-scan";
   std::string likelihood = "gaussian";
+  std::string gate_covariance = "particle";
 };
 
 // Adds every run option to cmd, bound to config and choices (--scenario and --out included, required).
