@@ -7,6 +7,8 @@
 
 #include <Eigen/LU>
 
+#include "core/math/chi_square.h"
+
 namespace arbor {
 
 std::optional<Pose2> interpolate_pose(const std::vector<TimedPose>& trajectory, double t) {
@@ -97,6 +99,21 @@ double fraction_in_band(const std::vector<double>& values, NeesBand band) {
   std::size_t inside = 0;
   for (double v : values) inside += v >= band.low && v <= band.high;
   return static_cast<double>(inside) / static_cast<double>(values.size());
+}
+
+std::optional<std::size_t> consistency_horizon(const std::vector<double>& nees, int dof, int window) {
+  const std::size_t w = static_cast<std::size_t>(window);
+  if (window < 1 || nees.size() < w) return std::nullopt;
+  const double low = chi_square_quantile(0.025, dof * window) / window;
+  const double high = chi_square_quantile(0.975, dof * window) / window;
+  std::size_t horizon = 0;  // one past the last sample whose window lies in the band
+  for (std::size_t end = w; end <= nees.size(); ++end) {
+    // Summed afresh (not a running sum): one NEES of 10^9 would leave its rounding in every later window.
+    double sum = 0.0;
+    for (std::size_t k = end - w; k < end; ++k) sum += nees[k];
+    if (sum / window >= low && sum / window <= high) horizon = end;
+  }
+  return horizon;
 }
 
 std::vector<TimedPose> dead_reckoning(const Scenario& scenario) {

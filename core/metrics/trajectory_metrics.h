@@ -52,6 +52,13 @@ inline constexpr NeesBand kNeesBand3Dof95{0.2158, 9.3484};
 // The share of values inside [band.low, band.high]; 0 for an empty input.
 double fraction_in_band(const std::vector<double>& values, NeesBand band);
 
+// The consistency horizon (issue 41): how many of a run's NEES samples (one per scan with ground truth) come
+// before the rolling mean over `window` samples leaves its band for good. The band of a mean of `window`
+// chi-square(dof) values is the two-sided 95 % interval of chi-square(dof * window) / window (Bar-Shalom, Li &
+// Kirubarajan 2001, §5.4.2). values.size() when the last window lies inside it (consistent to the end), 0 when
+// no window does; std::nullopt when there are fewer values than one window.
+std::optional<std::size_t> consistency_horizon(const std::vector<double>& nees, int dof = 3, int window = 10);
+
 // Dead reckoning: the scenario's controls applied without noise from the initial pose, at every step.
 std::vector<TimedPose> dead_reckoning(const Scenario& scenario);
 

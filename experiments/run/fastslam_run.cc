@@ -141,7 +141,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
                  {"likelihood", std::string(to_string(config.options.likelihood))},
                  {"student_dof", config.options.student_dof},
-                 {"known_gate_probability", config.options.association.known_gate_probability}};
+                 {"known_gate_probability", config.options.association.known_gate_probability},
+                 {"gate_covariance", std::string(to_string(config.options.gate_covariance))},
+                 {"roughen", config.options.roughen}};
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
   r.update(accuracy_fields(scenario, truth, best, map));
@@ -151,6 +153,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["nees_mean"] = mean_or_null(out.nees);
   r["nees_median"] = out.nees.empty() ? Json(nullptr) : Json(quantile(out.nees, 0.5));
   r["nees_in_band_fraction"] = out.nees.empty() ? Json(nullptr) : Json(fraction_in_band(out.nees, kNeesBand3Dof95));
+  const auto horizon = consistency_horizon(out.nees);
+  r["consistency_horizon_scan"] = horizon ? Json(*horizon) : Json(nullptr);
+  r["consistency_horizon_fraction"] = horizon ? Json(double(*horizon) / out.nees.size()) : Json(nullptr);
   r["rejected_measurements"] = filter->best_rejected_measurements();
   r["loop_closures"] = filter->best_loop_closures();
   r["assoc_precision"] = optional_number(counts.precision());

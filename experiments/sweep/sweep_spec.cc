@@ -244,7 +244,8 @@ const std::vector<std::string>& known_metrics() {
   static const std::vector<std::string> names{
       // arbor run
       "assoc_f1", "assoc_precision", "assoc_recall", "ate_aligned", "ate_aligned_rmse_m", "ate_mean_rmse_m",
-      "ate_rmse_m", "budget_exhausted", "compatibility_tests", "dead_reckoning_ate_m", "hypotheses",
+      "ate_rmse_m", "budget_exhausted", "compatibility_tests", "consistency_horizon_fraction",
+      "consistency_horizon_scan", "dead_reckoning_ate_m", "hypotheses",
       "landmark_rmse_m", "landmarks", "loop_closures", "map_bytes_per_particle", "map_shared_fraction", "n_eff_mean",
       "nees_in_band_fraction", "nees_mean", "nees_median", "observed_true_landmarks", "peak_rss_bytes",
       "provisional_landmarks", "rejected_measurements", "relocalizations", "resamples", "scenario_duration_s",
