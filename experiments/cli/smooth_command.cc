@@ -18,7 +18,6 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
       "scans chained into one relative-motion factor, range-bearing factors, a prior on the first pose. The "
       "accuracy reference for FastSLAM on the same data.");
   auto config = std::make_shared<SmoothConfig>();
-  auto loss = std::make_shared<std::string>("none");
   auto solver = std::make_shared<std::string>(std::string(to_string(config->options.linear_solver)));
   auto quiet = std::make_shared<bool>(false);
   auto* scenario = cmd->add_option("--scenario", config->scenario_path, "Scenario file (from `arbor simulate` or `arbor convert`)");
@@ -35,8 +34,10 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                   "dead-reckoning, or a FastSLAM result directory (trajectory.tum; map.csv too when it is also the "
                   "association source). Starting from a run turns the warm start off")
       ->capture_default_str();
-  cmd->add_option("--loss", *loss, "Robust loss on landmark observations: none, huber, cauchy")
-      ->check(CLI::IsMember({"none", "huber", "cauchy"}))
+  cmd->add_option("--loss", config->loss,
+                  "Robust loss on landmark observations: auto (cauchy on real data, none on simulated), none, huber, "
+                  "cauchy")
+      ->check(CLI::IsMember({"auto", "none", "huber", "cauchy"}))
       ->capture_default_str();
   cmd->add_option("--loss-scale", config->options.loss_scale,
                   "Where the robust loss leaves the quadratic, in standard deviations of the whitened residual")
@@ -73,7 +74,6 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
       forget_finished_run(config->out_dir);  // before anything can fail (see run_command.cc)
       if (config->scenario_path.empty() && config->isam_path.empty())
         throw InputError("", 0, "scenario", "give --scenario FILE or --isam FILE");
-      if (!from_string(*loss, &config->options.loss)) throw InputError("", 0, "loss", "unknown loss " + *loss);
       if (!from_string(*solver, &config->options.linear_solver))
         throw InputError("", 0, "solver", "unknown solver " + *solver);
       const SmoothOutput out = run_smoother(*config);
@@ -88,7 +88,7 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
       const SmootherSummary& s = out.smoother.summary;
       fmt::print("{} smooth associations={} solver={} loss={}\n",
                  config->isam_path.empty() ? config->scenario_path : config->isam_path, config->associations, *solver,
-                 *loss);
+                 r["config"]["loss"].get<std::string>());
       fmt::print("  {} poses, {} landmarks, {} factors; {} iterations, cost {:.6g} -> {:.6g}, {}\n", s.poses,
                  s.landmarks, s.factors, s.iterations, s.initial_cost, s.final_cost, s.termination);
       fmt::print("  solve {:.3f} s wall, {:.3f} s CPU (build {:.3f} s), gradient max norm {:.3g}\n", s.solve_time_s,
