@@ -22,6 +22,8 @@ PARAMS = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "worl
 METHOD = ["filter", "map", "assoc"]
 # Everything else a sweep may vary; a figure draws one line per combination that varies in the results.
 CONTEXT = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "particles", "threads"]
+# The columns that name a scenario: with the seed they identify the smoother's run a filter run compares with.
+SCENARIO = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed"]
 
 
 def load_results(path):

@@ -17,7 +17,9 @@ EXTRA = ["scenario_duration_s", "dead_reckoning_ate_m", "ate_aligned", "scenario
 
 
 def with_run_details(df, results_dir):
-    """The rows with EXTRA read from each run's result.json (missing files leave the fields empty)."""
+    """The rows with EXTRA read from each run's result.json (missing files leave the fields empty); a field the
+    rows already hold (a sweep may keep dead_reckoning_ate_m as a metric) is not read again."""
+    fields = [k for k in EXTRA if k == "scenario" or k not in df]  # the rows' "scenario" is the file's path
     details = []
     for run_dir in df["run_dir"]:
         path = os.path.join(results_dir, str(run_dir), "result.json")
@@ -26,7 +28,7 @@ def with_run_details(df, results_dir):
                 result = json.load(f)
         except (OSError, ValueError):
             result = {}
-        details.append({("scenario_metadata" if k == "scenario" else k): result.get(k) for k in EXTRA})
+        details.append({("scenario_metadata" if k == "scenario" else k): result.get(k) for k in fields})
     return df.reset_index(drop=True).join(ar.pd.DataFrame(details))
 
 

@@ -7,17 +7,17 @@ import sys
 
 import arbor_results as ar
 
-SCENARIO = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed"]
-
 
 def make(df, out_dir, results_path=None):
     df = ar.ok_rows(df)
-    if "filter" not in df or not (df["filter"] == "smoother").any() or not (df["filter"] != "smoother").any():
+    if ("filter" not in df or not ar.has_data(df, "ate_rmse_m") or not (df["filter"] == "smoother").any()
+            or not (df["filter"] != "smoother").any()):
         return []
-    scenario = [c for c in SCENARIO if c in df.columns]
+    scenario = [c for c in ar.SCENARIO if c in df.columns]
     smoother = df[df["filter"] == "smoother"]
     fastslam = df[df["filter"] != "smoother"]
-    joined = fastslam.merge(smoother[scenario + ["seed", "ate_rmse_m", "landmark_rmse_m"]],
+    metrics = [c for c in ("ate_rmse_m", "landmark_rmse_m") if c in df]  # a sweep may keep fewer metrics
+    joined = fastslam.merge(smoother[scenario + ["seed"] + metrics],
                             on=scenario + ["seed"], suffixes=("", "_smoother"), how="inner")
     if joined.empty:
         return []
@@ -26,11 +26,13 @@ def make(df, out_dir, results_path=None):
     groups, joined = ar.drop_identical_map_backends(joined, groups, scenario + ["seed"])
     rows = []
     for key, g in joined.groupby(groups, sort=True):
-        rows.append({"configuration": ar.label(g.iloc[0], groups), "runs": len(g),
-                     "ATE (m)": g["ate_rmse_m"].mean(), "smoother ATE (m)": g["ate_rmse_m_smoother"].mean(),
-                     "ATE ratio": ar.fmt_mean_ci(g["ate_ratio"]),
-                     "landmark RMSE (m)": g["landmark_rmse_m"].mean(),
-                     "smoother landmark RMSE (m)": g["landmark_rmse_m_smoother"].mean()})
+        row = {"configuration": ar.label(g.iloc[0], groups), "runs": len(g),
+               "ATE (m)": g["ate_rmse_m"].mean(), "smoother ATE (m)": g["ate_rmse_m_smoother"].mean(),
+               "ATE ratio": ar.fmt_mean_ci(g["ate_ratio"])}
+        if "landmark_rmse_m" in metrics:
+            row.update({"landmark RMSE (m)": g["landmark_rmse_m"].mean(),
+                        "smoother landmark RMSE (m)": g["landmark_rmse_m_smoother"].mean()})
+        rows.append(row)
     frame = ar.pd.DataFrame(rows)
     print(frame.to_string(index=False))
     return [ar.Section("FastSLAM vs smoother",
