@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Association errors by place (issue 41): of the pairings a run made with landmarks whose true id is known,
+how many name the wrong true landmark but one within RADIUS metres of the right one, and how many a wrong
+place. MRCLAM's 15 landmarks stand in clusters of two or three 0.18-0.25 m apart, closer than the camera's range
+noise (sigma 0.11-0.19 m), so a geometric strategy (JCBB, NN) cannot tell a cluster's members apart and its
+F1 against the barcodes counts those as false matches; the place count says what it got wrong otherwise.
+Pairings with landmarks the run later dropped are not in its map.csv and are left out.
+Usage: analysis/place_association.py RUN_DIR... [--radius 0.3]   (run directories of `arbor run`)"""
+
+import argparse
+import csv
+import json
+import os
+
+import numpy as np
+
+import arbor_results as ar
+
+
+def truth_positions(scenario_path):
+    """True landmark id -> position, from the scenario's `landmark ID X Y` lines."""
+    out = {}
+    with open(scenario_path, encoding="utf-8") as f:
+        for line in f:
+            fields = line.split()
+            if len(fields) == 4 and fields[0] == "landmark":
+                out[int(fields[1])] = np.array([float(fields[2]), float(fields[3])])
+    return out
+
+
+def count(run_dir, radius):
+    """(pairings scored, wrong id in the right place, wrong place) for one run directory."""
+    with open(os.path.join(run_dir, "result.json"), encoding="utf-8") as f:
+        scenario = json.load(f)["config"]["scenario"]
+    steps = ar.read_scenario_steps(scenario)
+    where = truth_positions(scenario)
+    with open(os.path.join(run_dir, "map.csv"), encoding="utf-8") as f:
+        label = {int(r["id"]): int(r["truth_label"]) for r in csv.DictReader(f)}
+    scored = near = far = 0
+    with open(os.path.join(run_dir, "associations.csv"), encoding="utf-8") as f:
+        for r in csv.DictReader(f):
+            landmark = int(r["landmark"])
+            truth = steps[int(r["step"])][2][int(r["measurement"])]
+            if landmark < 0 or landmark not in label or truth is None or truth < 0:
+                continue
+            scored += 1
+            guess = label[landmark]
+            if guess == truth:
+                continue
+            close = guess in where and truth in where and np.linalg.norm(where[guess] - where[truth]) < radius
+            near += close
+            far += not close
+    return scored, near, far
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("runs", nargs="+")
+    parser.add_argument("--radius", type=float, default=0.3)
+    args = parser.parse_args()
+    total = np.zeros(3, dtype=int)
+    for run in args.runs:
+        total += count(run, args.radius)
+    scored, near, far = total
+    print(f"{len(args.runs)} runs, {scored} pairings scored: {near} ({100 * near / max(scored, 1):.1f} %) name another "
+          f"landmark within {args.radius} m, {far} ({100 * far / max(scored, 1):.1f} %) a wrong place")
+
+
+if __name__ == "__main__":
+    main()
