@@ -76,8 +76,8 @@ std::vector<ControlSample> read_odometry(const std::string& path, LoadReport* re
     in.expect_fields(3, 3, "odometry");
     ControlSample c;
     c.time_ms = seconds_to_ms(time_field(in, 0, "time"));
-    c.u1 = control_field(in, 1, "v");
-    c.u2 = control_field(in, 2, "omega");
+    c.u1 = UtiasNoiseDefaults::kSpeedScale * control_field(in, 1, "v");
+    c.u2 = UtiasNoiseDefaults::kTurnRateScale * control_field(in, 2, "omega");
     // Known dirty: robots 2-5 of Dataset 6 log a few commands twice in one millisecond. The later one is
     // the command in force, so it replaces the earlier.
     if (order.check(in, c.time_ms, "time")) {
