@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The held-out protocol (issue 41): experiments/heldout/run.sh calibration|evaluation OUT [ARBOR_BINARY]
-# Converts the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
+# Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
 # chosen. Evaluation: robots 3-5 and simulated seeds 10000-10011, the figures the README quotes; about
-# 20 minutes on 2 cores. Re-running resumes (finished runs are skipped).
+# 10 minutes on 2 cores. Re-running resumes (finished runs are skipped).
 set -euo pipefail
 set_name=${1:?usage: $0 calibration|evaluation OUT [ARBOR_BINARY]}
 out=$(realpath -m "${2:?usage: $0 calibration|evaluation OUT [ARBOR_BINARY]}")
@@ -19,7 +19,7 @@ utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p out/scenarios "$out"
 for r in $robots; do
   scn=out/scenarios/utias_d6_robot$r.scn
-  [ -f "$scn" ] || "$arbor" convert --from utias-mrclam --input "$utias" --robot "$r" --out "$scn" > /dev/null
+  "$arbor" convert --from utias-mrclam --input "$utias" --robot "$r" --out "$scn" > /dev/null
 done
 python=/usr/bin/python3  # Debian's, with numpy and pandas (the first python3 on PATH may lack them)
 for spec in experiments/heldout/${set_name}_*.toml; do
