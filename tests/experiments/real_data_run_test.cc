@@ -46,8 +46,10 @@ TEST(RealData, UtiasRobot1WithKnownAssociationAteFarBelowDeadReckoning) {
   // Measured (Release, 100 particles, the whole 760 s, the weighted mean at every Vicon time): seed 1
   // 0.44 m, seeds 1-3 0.44-0.69 m; dead reckoning 2.62 m. Before prediction between scans and the calibrated
   // noise the same run gave 1.13 m (seeds 1-3: 0.78-1.13 m), so the floor of 0.6 m fails for that engine.
+  // Since the loader scales the logged commands (issue 41: 0.94 speed, 0.93 turn rate, fitted on robots 1-2),
+  // dead reckoning itself is 1.60 m, not 2.62 m.
   const RunErrors e = run_known_association(s, 100, 1);
-  EXPECT_GT(e.dead_reckoning_rmse_m, 2.0);
+  EXPECT_GT(e.dead_reckoning_rmse_m, 1.2);
   EXPECT_LT(e.filter_rmse_m, 0.6);
   EXPECT_EQ(e.landmarks, 15u);
 }
