@@ -87,26 +87,18 @@ TEST(GateCovariance, SetGatingAndRougheningAreBitIdenticalAcrossBackendsAndThrea
   o.steps = 200;
   o.clutter_rate = 2.0;
   const Scenario scenario = simulate(o);
-  std::string reference;
-  for (const std::string& map : map_backend_names()) {
-    for (int threads : {1, 2}) {
-      RunConfig c;
-      c.map = map;
-      c.assoc = "jcbb";
-      c.options.particles = 20;
-      c.options.seed = 3;
-      c.options.threads = threads;
-      c.options.gate_covariance = GateCovariance::kSet;
-      c.options.roughen = 1.0;
-      c.out_dir = testing::scratch_dir("set_gates_" + map + "_" + std::to_string(threads));
-      const RunOutput out = run_fastslam(scenario, c);
-      EXPECT_GT(out.result["resamples"].get<int>(), 0) << "roughening acts only after a resampling";
-      const std::string files = testing::read_file(c.out_dir + "/trajectory.tum") +
-                                testing::read_file(c.out_dir + "/map.csv") + out.result["assoc_f1"].dump();
-      if (reference.empty()) reference = files;
-      EXPECT_TRUE(files == reference) << map << " with " << threads << " threads differs";
-    }
-  }
+  testing::expect_bit_identical_across_backends_and_threads(
+      scenario, "set_gates",
+      [](RunConfig& c) {
+        c.assoc = "jcbb";
+        c.options.particles = 20;
+        c.options.seed = 3;
+        c.options.gate_covariance = GateCovariance::kSet;
+        c.options.roughen = 1.0;
+      },
+      [](const RunOutput& out, const std::string& what) {
+        EXPECT_GT(out.result["resamples"].get<int>(), 0) << what << ": roughening acts only after a resampling";
+      });
 }
 
 }  // namespace

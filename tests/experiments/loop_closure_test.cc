@@ -111,25 +111,15 @@ TEST(LoopClosure, RunsAreBitIdenticalAcrossBackendsAndThreads) {
   o.world.landmarks = 250;
   o.clutter_rate = 5.0;
   const Scenario scenario = simulate(o);
-  std::string reference;
-  for (const std::string& map : map_backend_names()) {
-    for (int threads : {1, 2}) {
-      RunConfig c;
-      c.map = map;
-      c.assoc = "jcbb";
-      c.options.particles = 20;
-      c.options.seed = 3;
-      c.options.threads = threads;
-      c.options.close_loops = true;
-      c.out_dir = testing::scratch_dir("loop_closure_" + map + "_" + std::to_string(threads));
-      const RunOutput out = run_fastslam(scenario, c);
-      EXPECT_GT(out.result["loop_closures"].get<int>(), 0) << map << ", " << threads << " threads";
-      const std::string files = testing::read_file(c.out_dir + "/trajectory.tum") +
-                                testing::read_file(c.out_dir + "/map.csv") + out.result["assoc_f1"].dump();
-      if (reference.empty()) reference = files;
-      EXPECT_TRUE(files == reference) << map << " with " << threads << " threads differs";
-    }
-  }
+  testing::expect_bit_identical_across_backends_and_threads(
+      scenario, "loop_closure",
+      [](RunConfig& c) {
+        c.assoc = "jcbb";
+        c.options.particles = 20;
+        c.options.seed = 3;
+        c.options.close_loops = true;
+      },
+      [](const RunOutput& out, const std::string& what) { EXPECT_GT(out.result["loop_closures"].get<int>(), 0) << what; });
 }
 
 }  // namespace

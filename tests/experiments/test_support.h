@@ -6,13 +6,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
+#include "variants/registry.h"
 
 namespace arbor::testing {
 
@@ -77,6 +81,31 @@ inline std::string read_file(const std::string& path) {
 inline std::string arbor_binary() {
   const char* dir = std::getenv("ARBOR_BINARY_DIR");
   return std::string(dir ? dir : ARBOR_TEST_BINARY_DIR) + "/bin/arbor";
+}
+
+// Runs the scenario with every map back end on 1 and 2 threads, each run's config set by `configure`, and
+// expects the trajectory, the map and the F1 to be the same to the last bit in all of them; `check` is called
+// on every run's output (what a run must show for the comparison to mean something).
+inline void expect_bit_identical_across_backends_and_threads(
+    const Scenario& scenario, const std::string& name, const std::function<void(RunConfig&)>& configure,
+    const std::function<void(const RunOutput&, const std::string& what)>& check = {}) {
+  std::string reference;
+  for (const std::string& map : map_backend_names()) {
+    for (int threads : {1, 2}) {
+      RunConfig c;
+      configure(c);
+      c.map = map;
+      c.options.threads = threads;
+      c.out_dir = scratch_dir(name + "_" + map + "_" + std::to_string(threads));
+      const RunOutput out = run_fastslam(scenario, c);
+      const std::string what = map + " with " + std::to_string(threads) + " threads";
+      if (check) check(out, what);
+      const std::string files =
+          read_file(c.out_dir + "/trajectory.tum") + read_file(c.out_dir + "/map.csv") + out.result["assoc_f1"].dump();
+      if (reference.empty()) reference = files;
+      EXPECT_TRUE(files == reference) << what << " differs";
+    }
+  }
 }
 
 struct CommandResult {
