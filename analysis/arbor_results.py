@@ -279,12 +279,33 @@ def fmt_num(v, digits=3):
     return f"{v:.{digits}g}"
 
 
+# Characters with a meaning in Markdown's inline syntax or in its tables (and in html_report's subset of it);
+# "_" and "#" are left alone: html_report renders neither inline, and GitHub's Markdown takes no intraword "_".
+MARKDOWN_SPECIAL = re.compile(r"([\\`*\[\]!|<>])")
+
+
+def md_text(value):
+    """Text from a spec or a results file as Markdown that renders as that text and as nothing else: on one
+    line (a newline would start a block: a heading, an image, a code fence) and with every character that
+    means something in Markdown escaped (html_report.inline undoes the escapes). Data never becomes structure."""
+    return MARKDOWN_SPECIAL.sub(r"\\\1", " ".join(str(value).split()))
+
+
+def code_block(text, info=""):
+    """text verbatim in a fenced code block whose fence is longer than any backtick run in it, so the text
+    cannot close it (CommonMark's rule, which html_report follows)."""
+    longest = max((len(m) for m in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}{info}\n{text}\n{fence}"
+
+
 def markdown_table(df, digits=3):
-    """A GitHub Markdown table (no dependency on tabulate)."""
+    """A GitHub Markdown table (no dependency on tabulate); text cells and headers are data (md_text)."""
     cols = list(df.columns)
-    out = ["| " + " | ".join(str(c) for c in cols) + " |", "|" + "---|" * len(cols)]
+    out = ["| " + " | ".join(md_text(c) for c in cols) + " |", "|" + "---|" * len(cols)]
     for _, r in df.iterrows():
-        out.append("| " + " | ".join(fmt_num(r[c], digits) if not isinstance(r[c], str) else r[c] for c in cols) + " |")
+        out.append("| " + " | ".join(fmt_num(r[c], digits) if not isinstance(r[c], str) else md_text(r[c])
+                                     for c in cols) + " |")
     return "\n".join(out)
 
 

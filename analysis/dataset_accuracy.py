@@ -37,11 +37,11 @@ def reference_text(scenario):
     meta = scenario if isinstance(scenario, dict) else {}
     parts = []
     if meta.get("truth_track"):
-        parts.append(f"reference trajectory `{meta['truth_track']}`")
+        parts.append(f"reference trajectory {ar.md_text(meta['truth_track'])}")
     if meta.get("source"):
-        parts.append(f"source `{meta['source']}`")
+        parts.append(f"source {ar.md_text(meta['source'])}")
     if meta.get("citation"):
-        parts.append(f"citation `{meta['citation']}`")
+        parts.append(f"citation {ar.md_text(meta['citation'])}")
     return "; ".join(parts) or "reference: the scenario's ground truth"
 
 

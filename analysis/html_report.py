@@ -51,22 +51,55 @@ document.querySelectorAll('table').forEach(function (table) {
 """
 
 
+# A backslash escape of Markdown (arbor_results.md_text writes them): the character as text.
+ESCAPE = re.compile(r"\\([\\`*\[\]!|<>])")
+# The report embeds only the figures it drew: image files inside its own directory, of bounded size.
+FIGURE_KINDS = {".png": "png", ".svg": "svg+xml"}
+MAX_FIGURE_BYTES = 16 << 20
+
+
 def inline(text):
-    """Escapes text and renders **bold** and `code`."""
-    out = html.escape(text, quote=False)
-    out = re.sub(r"`([^`]+)`", r"<code>\1</code>", out)
-    return re.sub(r"\*\*([^*]+)\*\*", r"<strong>\1</strong>", out)
+    """Escapes text and renders **bold** and `code`; a backslash-escaped character is text, never markup."""
+    parts = ESCAPE.split(text)  # even indices: text with markup; odd: escaped characters
+    out = []
+    for k, part in enumerate(parts):
+        if k % 2:
+            out.append(html.escape(part, quote=False))
+            continue
+        part = html.escape(part, quote=False)
+        part = re.sub(r"`([^`]+)`", r"<code>\1</code>", part)
+        out.append(re.sub(r"\*\*([^*]+)\*\*", r"<strong>\1</strong>", part))
+    return "".join(out)
+
+
+def own_figure(path, base_dir):
+    """The file `path` names when it is one of the report's figures (a PNG or SVG file inside base_dir, links
+    resolved, under MAX_FIGURE_BYTES), else None."""
+    root = os.path.realpath(base_dir)
+    full = os.path.realpath(os.path.join(root, path))
+    if os.path.commonpath([root, full]) != root or os.path.splitext(full)[1].lower() not in FIGURE_KINDS:
+        return None
+    if not os.path.isfile(full) or os.path.getsize(full) > MAX_FIGURE_BYTES:
+        return None
+    return full
 
 
 def image(alt, path, base_dir):
-    """An <img> with the file embedded; a missing file is said in words (never a broken image)."""
-    full = os.path.join(base_dir, path)
-    if not os.path.exists(full):
-        return f"<p><em>(figure {html.escape(path)} is missing)</em></p>"
+    """An <img> with the figure embedded; anything else is said in words (never a broken image, never a file
+    that is not the report's own figure)."""
+    full = own_figure(path, base_dir)
+    if full is None:
+        return f"<p><em>(figure {html.escape(path)} is missing or not one of this report's figures)</em></p>"
     with open(full, "rb") as f:
         data = base64.b64encode(f.read()).decode("ascii")
-    kind = "png" if path.lower().endswith(".png") else "svg+xml" if path.lower().endswith(".svg") else "jpeg"
+    kind = FIGURE_KINDS[os.path.splitext(full)[1].lower()]
     return f'<img alt="{html.escape(alt)}" src="data:image/{kind};base64,{data}">'
+
+
+def fence_of(line):
+    """The backtick run that opens a code fence on this line ("" if none): three or more."""
+    run = len(line) - len(line.lstrip("`"))
+    return line[:run] if run >= 3 else ""
 
 
 def table(lines):
@@ -84,9 +117,12 @@ def markdown_to_html(text, base_dir):
         line = lines[i]
         if not line.strip():
             i += 1
-        elif line.startswith("```"):
+        elif fence_of(line):
+            # Closed only by a line of backticks at least as long as the opening (CommonMark), so a spec whose
+            # text holds a fence of its own (arbor_results.code_block) cannot close it.
+            fence = fence_of(line)
             j = i + 1
-            while j < len(lines) and not lines[j].startswith("```"):
+            while j < len(lines) and not (lines[j].strip().startswith(fence) and set(lines[j].strip()) == {"`"}):
                 j += 1
             out.append("<pre>" + html.escape("\n".join(lines[i + 1:j]), quote=False) + "</pre>")
             i = j + 1
@@ -111,7 +147,7 @@ def markdown_to_html(text, base_dir):
                 i += 1
             out.append("<ul>" + "".join(items) + "</ul>")
         else:
-            j = i
+            j = i + 1  # a paragraph holds at least its first line (a lone "![" once looped forever here)
             while j < len(lines) and lines[j].strip() and not lines[j].startswith(("#", "|", "- ", "![", "```")):
                 j += 1
             out.append("<p>" + inline(" ".join(lines[i:j])) + "</p>")

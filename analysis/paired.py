@@ -76,7 +76,7 @@ def value_text(dimension, value):
 def sentence(r):
     """What a significant row says, in words."""
     column, name, unit, lower_better = next(m for m in METRICS if m[0] == r["metric"])
-    a, b = value_text(r["dimension"], r["a"]), value_text(r["dimension"], r["b"])
+    a, b = ar.md_text(value_text(r["dimension"], r["a"])), ar.md_text(value_text(r["dimension"], r["b"]))
     better, worse = (a, b) if (r["mean"] < 0) == lower_better else (b, a)
     unit = f" {unit}" if unit else ""
     return (f"- **{better}** beats {worse} on {name}: difference {ar.fmt_num(abs(r['mean']))}{unit} "

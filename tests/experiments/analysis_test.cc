@@ -269,7 +269,7 @@ TEST_F(AnalysisScripts, DatasetSweepsGetAnAccuracyTableAgainstTheirReference) {
   ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
   const std::string log = read_text(out / "log.txt");
   EXPECT_NE(log.find("## Accuracy on park"), std::string::npos) << log;
-  EXPECT_NE(log.find("reference trajectory `gps_track`; source `victoria-park`; citation `Guivant2001`; 1500 s of data"),
+  EXPECT_NE(log.find("reference trajectory gps_track; source victoria-park; citation Guivant2001; 1500 s of data"),
             std::string::npos) << log;
   EXPECT_NE(log.find("| jcbb | 3 | 1.2 ± 0.25 | 93.1 | 200 | 10 | 150× |"), std::string::npos) << log;
   EXPECT_NE(log.find("| nn | 3 | 2.2 ± 0.25 | 93.1 | 200 | 10 | 150× |"), std::string::npos) << log;
