@@ -39,9 +39,22 @@ def load_results(path):
         with open(path, encoding="utf-8") as f:
             text = f.read()
         lines = text.split("\n")[:-1]  # the piece after the last newline is not a row
-        df = pd.DataFrame([json.loads(line) for line in lines if line.strip()])
+        rows = []
+        for number, line in enumerate(lines, 1):
+            if not line.strip():
+                continue
+            try:
+                row = json.loads(line)
+            except json.JSONDecodeError as e:
+                raise ValueError(f"{path}:{number}: not a JSON row ({e.msg})") from None
+            if not isinstance(row, dict):
+                raise ValueError(f"{path}:{number}: a row must be a JSON object")
+            rows.append(row)
+        df = pd.DataFrame(rows)
     if df.empty:
         return df
+    if "key" not in df:
+        raise ValueError(f"{path}: no 'key' column: not an arbor sweep's results")
     df = df.drop_duplicates(subset="key", keep="last").reset_index(drop=True)
     options = run_option_columns(df)
     for c in df.columns:

@@ -59,8 +59,11 @@ def table_for(rows):
         if ar.has_data(g, "assoc_f1"):
             row["association F1"] = ar.fmt_mean_ci(g["assoc_f1"])
         row["landmarks"] = ar.fmt_num(float(g["landmarks"].mean())) if ar.has_data(g, "landmarks") else "–"
+        if not ar.has_data(g, "wall_time_s"):  # a sweep's `metrics` may leave it out
+            out.append(row)
+            continue
         row["wall time (s)"] = ar.fmt_num(float(g["wall_time_s"].mean()))
-        duration = g["scenario_duration_s"].dropna()
+        duration = g["scenario_duration_s"].dropna() if "scenario_duration_s" in g else ar.pd.Series(dtype=float)
         if not duration.empty:
             row["faster than real time"] = f"{ar.fmt_num(float(duration.iloc[0] / g['wall_time_s'].mean()), 3)}×"
         out.append(row)
