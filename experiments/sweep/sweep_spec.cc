@@ -264,7 +264,10 @@ std::vector<std::string> default_metrics(bool with_smoother) {
                              "step_time_median_s", "step_time_p95_s", "wall_time_s",    "peak_rss_bytes",
                              "ate_mean_rmse_m",    "true_landmarks",  "n_eff_mean",     "hypotheses",
                              "compatibility_tests", "map_bytes_per_particle", "nees_median",
-                             "nees_in_band_fraction", "rejected_measurements"};
+                             "nees_in_band_fraction", "rejected_measurements",
+                             // issue 41: the failure rate needs the aligned ATE beside the smoother's and dead
+                             // reckoning's; the consistency horizon says from when a run is overconfident
+                             "ate_aligned_rmse_m", "dead_reckoning_ate_m", "consistency_horizon_scan"};
   if (with_smoother) m.insert(m.end(), {"solve_time_s", "iterations", "initial_cost", "final_cost", "termination"});
   return m;
 }
