@@ -27,6 +27,7 @@
 #include "core/engine/fastslam_options.h"
 #include "core/engine/map_concept.h"
 #include "core/engine/persistent_history.h"
+#include "core/engine/resample_move.h"
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
 #include "core/types/box2.h"
@@ -57,6 +58,7 @@ struct Particle {
   std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
   std::vector<LandmarkAlias> aliases;  // open loop closures, oldest first (FastSlamOptions::close_loops)
   std::int64_t loop_closures = 0;      // aliases this lineage made
+  MoveWindow move;                     // its last scans, for resample-move (FastSlamOptions::move_window)
 };
 
 // A pose-free search of a map for one scan (the locality tree, from variants/): fills the pose world_T_robot
@@ -73,6 +75,8 @@ struct StepStats {
   std::int64_t budget_exhausted = 0;  // particles whose search stopped at its budget (best answer so far)
   std::size_t best_landmarks = 0;
   bool relocalized = false;  // this scan re-seeded every particle at a relocalised pose
+  std::int64_t moves_proposed = 0;  // resample-move proposals after this step's resampling
+  std::int64_t moves_accepted = 0;
 };
 
 // Weighted mean and covariance of the particle poses (heading by circular mean, differences wrapped); between
@@ -115,9 +119,11 @@ class FastSlam {
       pose.y += scenario.initial_sigma.y() * rng.normal();
       pose.theta = wrap_angle(pose.theta + scenario.initial_sigma.z() * rng.normal());
       particles_[i].history.push({scenario.start_time_s, pose});
+      particles_[i].move.anchor = pose;
     }
     weights_.assign(options.particles, 1.0 / options.particles);
     if (options.gate_covariance == GateCovariance::kSet) predicted_.resize(options.particles);
+    moves_ = options.move_window > 0;
   }
 
   // Processes one step: resample if the previous step left N_eff low, then predict and (with a scan)
@@ -216,6 +222,18 @@ class FastSlam {
     return e;
   }
 
+  // The landmarks particle i's resample-move window touched, replayed along the path it holds: equal to what
+  // its map holds, which is how the tests check the move's bookkeeping.
+  std::vector<LandmarkEstimate> replay_move_window(int i) const {
+    const MoveWindow& w = particles_[i].move;
+    std::vector<Pose2> poses;
+    for (const auto& scan : w.scans) poses.push_back(scan->pose);
+    std::vector<LandmarkEstimate> after;
+    std::vector<std::vector<LandmarkEstimate>> before;
+    move_log_target(w, poses, &after, &before);
+    return after;
+  }
+
   // Scans at which every particle was re-seeded at a relocalised pose.
   std::int64_t relocalizations() const { return relocalizations_; }
 
@@ -274,6 +292,108 @@ class FastSlam {
       const double h = options_.roughen * std::pow(4.0 / (particles_.size() * (d + 2.0)), 1.0 / (d + 4.0));
       roughening_kernel_ = Mat3(h * h * set_before_resampling.covariance);
     }
+    if (moves_) move_all();
+  }
+
+  // Resample-move (core/engine/resample_move.h): every particle tries move_steps proposals over its window,
+  // at scales move_scale, move_scale / 2, move_scale / 4, ... in turn.
+  void move_all() {
+    std::vector<int> accepted(particles_.size(), 0);
+    arena_.execute([&] {
+      tbb::parallel_for(0, static_cast<int>(particles_.size()), [&](int i) { accepted[i] = move_particle(particles_[i], i); });
+    });
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      stats_.moves_accepted += accepted[i];
+      stats_.moves_proposed += particles_[i].move.scans.empty() ? 0 : options_.move_steps;
+    }
+  }
+
+  // Returns the number of accepted proposals.
+  int move_particle(ParticleState& p, int index) const {
+    const MoveWindow& w = p.move;
+    if (w.scans.empty()) return 0;
+    std::vector<Pose2> poses;
+    for (const auto& scan : w.scans) poses.push_back(scan->pose);
+    std::vector<LandmarkEstimate> after, after_proposed;
+    std::vector<std::vector<LandmarkEstimate>> before, before_proposed;
+    double log_target = move_log_target(w, poses, &after, &before);
+    RandomStream rng(options_.seed, step_index_, index, RandomPurpose::kMove);
+    int accepted = 0;
+    double scale = options_.move_scale;
+    for (int step = 0; step < options_.move_steps; ++step, scale *= 0.5) {
+      const std::size_t k = pick_scan(w, rng.uniform());
+      const Vec3 noise = draw_vec3([&] { return rng.normal(); });
+      const double u = rng.uniform();
+      std::vector<Pose2> proposed = propose_path(w, poses, k, scale, noise);
+      const double proposed_target = move_log_target(w, proposed, &after_proposed, &before_proposed);
+      if (!(std::log(u) < proposed_target - log_target)) continue;
+      poses.swap(proposed);
+      after.swap(after_proposed);
+      before.swap(before_proposed);
+      log_target = proposed_target;
+      ++accepted;
+    }
+    if (accepted > 0) apply_move(p, poses, after, before);
+    return accepted;
+  }
+
+  // The window's log target along poses, replaying its landmark updates as update_landmarks and
+  // add_new_landmarks made them.
+  double move_log_target(const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
+                         std::vector<std::vector<LandmarkEstimate>>* before) const {
+    const auto update = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
+      return e ? update_landmark_estimate(pose, z, e->id, &e->mean, &e->cov) : 0.0;
+    };
+    const auto start = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
+      e->mean = range_bearing_inverse(pose, z);
+      e->cov = range_bearing_initial_covariance(pose, z, R_);
+      floor_covariance(&e->cov);
+    };
+    return window_log_target(w, poses, update, start, after, before);
+  }
+
+  // Writes an accepted path: the window's scans, the landmarks it touched (where the map still holds them),
+  // the pose history since the anchor and the prediction since the newest draw, carried along rigidly.
+  void apply_move(ParticleState& p, const std::vector<Pose2>& poses, const std::vector<LandmarkEstimate>& after,
+                  const std::vector<std::vector<LandmarkEstimate>>& before) const {
+    MoveWindow& w = p.move;
+    const std::size_t n = w.scans.size();
+    std::vector<Pose2> old(n);
+    for (std::size_t k = 0; k < n; ++k) old[k] = w.scans[k]->pose;
+    // The history, newest first: entries after draw k are carried with it; draw k's own entry becomes poses[k].
+    std::size_t count = w.history_entries_since_draw;
+    for (std::size_t k = n; k-- > 1;) count += 1 + w.scans[k]->history_entries_before;
+    count += 1;
+    std::vector<TimedPose> entries = p.history.newest_entries(count);
+    std::size_t e = 0;
+    const auto carry = [&](std::size_t k, int how_many) {
+      for (int j = 0; j < how_many; ++j, ++e) entries[e].pose = poses[k].compose(old[k].between(entries[e].pose));
+    };
+    carry(n - 1, w.history_entries_since_draw);
+    for (std::size_t k = n; k-- > 0;) {
+      entries[e++].pose = poses[k];
+      if (k > 0) carry(k - 1, w.scans[k]->history_entries_before);
+    }
+    p.history.drop_newest(count);
+    for (std::size_t j = count; j-- > 0;) p.history.push(entries[j]);
+    // The prediction since the newest draw, and its covariance turned with it.
+    p.pose = poses[n - 1].compose(old[n - 1].between(p.pose));
+    const Mat3 turn = in_frame_of(Pose2{0.0, 0.0, old[n - 1].theta - poses[n - 1].theta}, Mat3::Identity());
+    p.pose_covariance = turn * p.pose_covariance * turn.transpose();
+    for (std::size_t k = 0; k < n; ++k) {
+      auto scan = std::make_shared<MoveScan>(*w.scans[k]);
+      scan->pose = poses[k];
+      scan->before = before[k];
+      w.scans[k] = std::move(scan);
+    }
+    for (const LandmarkEstimate& est : after) {
+      const Landmark* lm = p.map.find(est.id);
+      if (!lm) continue;  // removed since by negative evidence
+      Landmark moved = *lm;
+      moved.mean = est.mean;
+      moved.cov = est.cov;
+      p.map.set(moved);
+    }
   }
 
   // How far beyond the sensor's view a pose drawn from N(pose, P) could see: three standard deviations of
@@ -317,6 +437,10 @@ class FastSlam {
     p.step_paired_settled = 0;
     if (roughening_kernel_) p.pose_covariance += *roughening_kernel_;
     motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
+    if (moves_ && step.has_scan) {
+      p.move.pending_predicted = p.move.last_draw().between(p.pose);
+      p.move.pending_cov = in_frame_of(p.move.last_draw(), p.pose_covariance);
+    }
     // FastSLAM 1.0 draws first and associates at the sample (P = 0); 2.0 associates at the prediction with
     // its covariance, because its proposal is drawn only after association (DESIGN.md §4).
     if (options_.version == FilterVersion::kFastSlam1 && step.has_scan && !step.measurements.empty())
@@ -334,12 +458,16 @@ class FastSlam {
         if (!s.erased.empty()) p.decisions.push({step_index_, {}, s.erased});
       }
       record_pose(p, step);
+      if (moves_ && step.has_scan) record_move_scan(p, {}, s);
       return;
     }
     gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
     redirect_aliases(p, s);
     collect_touched(p, step.measurements, s);
+    std::vector<LandmarkEstimate> before;
+    if (moves_)
+      for (const Touched& t : s.touched) before.push_back({t.landmark.id, t.landmark.mean, t.landmark.cov});
     if (options_.relocalize)
       for (int t : s.touched_of) p.step_paired_settled += t >= 0 && settled(s.touched[t].landmark);
     double log_weight = fastslam2 ? propose_and_draw(p, step.measurements, index, s) : 0.0;
@@ -351,6 +479,26 @@ class FastSlam {
     p.log_weight += log_weight;
     record_pose(p, step);
     record_decisions(p, step.measurements.size(), s);
+    if (moves_) record_move_scan(p, std::move(before), s, &step.measurements);
+  }
+
+  // The scan just drawn joins the particle's resample-move window: its prediction, its draw, and its
+  // pairings in the order update_landmarks and add_new_landmarks applied them.
+  void record_move_scan(ParticleState& p, std::vector<LandmarkEstimate> before, const Scratch& s,
+                        const std::vector<Measurement>* measurements = nullptr) const {
+    auto scan = std::make_shared<MoveScan>();
+    scan->pose = p.pose;
+    scan->predicted = p.move.pending_predicted;
+    scan->predicted_cov = p.move.pending_cov;
+    scan->before = std::move(before);
+    scan->history_entries_before = p.move.history_entries_since_draw;
+    if (measurements)
+      for (bool fresh : {false, true})
+        for (std::size_t k = 0; k < measurements->size(); ++k) {
+          if (s.touched_of[k] < 0 || s.touched[s.touched_of[k]].is_new != fresh) continue;
+          scan->pairings.push_back({(*measurements)[k].z(), s.touched[s.touched_of[k]].landmark.id, fresh});
+        }
+    p.move.push(std::move(scan), options_.move_window);
   }
 
   // Replaces the prediction N(pose, P) by one draw from it.
@@ -361,7 +509,9 @@ class FastSlam {
   }
 
   void record_pose(ParticleState& p, const ScenarioStep& step) const {
-    if (step.has_scan || step.truth_pose.has_value()) p.history.push({step.time_s, p.pose});
+    if (!step.has_scan && !step.truth_pose.has_value()) return;
+    p.history.push({step.time_s, p.pose});
+    p.move.history_entries_since_draw += moves_ && !step.has_scan;
   }
 
   // The measurement's log-likelihood under innovation covariance S, and the factor by which the update should
@@ -454,24 +604,9 @@ class FastSlam {
       if (s.touched_of[k] < 0) continue;
       Touched& t = s.touched[s.touched_of[k]];
       Landmark& lm = t.landmark;
-      Mat2 H_m;
-      Mat23 H_x;
-      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean, &H_m, redirected(s, k) ? &H_x : nullptr);
-      const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
-      double scale = 1.0;
-      Mat2 S = H_m * lm.cov * H_m.transpose();
-      if (redirected(s, k)) S += H_x * loop_drift_ * H_x.transpose();
-      const double ll = log_likelihood(nu, S + R_, &scale);
+      const double ll =
+          update_landmark_estimate(p.pose, measurements[k].z(), lm.id, &lm.mean, &lm.cov, redirected(s, k) ? &loop_drift_ : nullptr);
       if (weight) log_weight += steers_pose(t, s) ? ll : log_likelihood_unpaired_;
-      const Mat2 R = scale * R_;
-      const Mat2 Q = H_m * lm.cov * H_m.transpose() + R;
-      const Mat2 K = lm.cov * H_m.transpose() * Q.inverse();
-      lm.mean += K * nu;
-      const Mat2 I_KH = Mat2::Identity() - K * H_m;
-      lm.cov = I_KH * lm.cov * I_KH.transpose() + K * R * K.transpose();
-      lm.cov = 0.5 * (lm.cov + lm.cov.transpose());
-      floor_covariance(&lm.cov);
-      ARBOR_CHECK(lm.cov(0, 0) > 0.0 && lm.cov.determinant() > 0.0, "landmark {} covariance lost definiteness", lm.id);
       lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
       lm.confirmed |= lm.log_odds >= options_.log_odds_confirm;
       lm.seen_scan = scan_index_;
@@ -479,6 +614,30 @@ class FastSlam {
       if (!std::isnan(sig)) lm.signature = std::isnan(lm.signature) ? sig : lm.signature + 0.2f * (sig - lm.signature);
     }
     return log_weight;
+  }
+
+  // One landmark EKF update at a known pose (Montemerlo 2002, eq. 8-11; Joseph form); returns the measurement's
+  // log-likelihood, whose innovation covariance gains pose_drift's where a loop closure allows drift.
+  double update_landmark_estimate(const Pose2& pose, const Vec2& z, LandmarkId id, Vec2* mean, Mat2* cov,
+                                  const Mat3* pose_drift = nullptr) const {
+    Mat2 H_m;
+    Mat23 H_x;
+    const Vec2 z_hat = range_bearing_predict(pose, *mean, &H_m, pose_drift ? &H_x : nullptr);
+    const Vec2 nu = range_bearing_innovation(z, z_hat);
+    double scale = 1.0;
+    Mat2 S = H_m * *cov * H_m.transpose();
+    if (pose_drift) S += H_x * *pose_drift * H_x.transpose();
+    const double ll = log_likelihood(nu, S + R_, &scale);
+    const Mat2 R = scale * R_;
+    const Mat2 Q = H_m * *cov * H_m.transpose() + R;
+    const Mat2 K = *cov * H_m.transpose() * Q.inverse();
+    *mean += K * nu;
+    const Mat2 I_KH = Mat2::Identity() - K * H_m;
+    *cov = I_KH * *cov * I_KH.transpose() + K * R * K.transpose();
+    *cov = 0.5 * (*cov + cov->transpose());
+    floor_covariance(cov);
+    ARBOR_CHECK((*cov)(0, 0) > 0.0 && cov->determinant() > 0.0, "landmark {} covariance lost definiteness", id);
+    return ll;
   }
 
   // New landmarks from the measurements the association left unexplained (inverse measurement model); a
@@ -927,6 +1086,7 @@ class FastSlam {
   };
   std::vector<std::vector<PredictedMeasurement>> predicted_;
   std::unordered_map<LandmarkId, Mat2> set_spread_;
+  bool moves_ = false;  // FastSlamOptions::move_window > 0
   std::optional<Mat3> roughening_kernel_;  // FastSlamOptions::roughen: added at the step after a resampling
   std::int64_t step_index_ = 0;
   std::int32_t scan_index_ = 0;  // scans before this step: a landmark's born_scan

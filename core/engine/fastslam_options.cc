@@ -33,6 +33,14 @@ std::string FastSlamOptions::validate() const {
   if (!(loop_drift_m > 0.0 && std::isfinite(loop_drift_m)))
     return fmt::format("loop drift must be positive and finite (got {} m)", loop_drift_m);
   if (!(roughen >= 0.0 && roughen <= 10.0)) return fmt::format("roughening must lie in [0, 10] (got {})", roughen);
+  if (move_window < 0 || move_window > 10000)
+    return fmt::format("move window must lie in [0, 10000] scans (got {})", move_window);
+  if (move_steps < 1 || move_steps > 1000) return fmt::format("move steps must lie in [1, 1000] (got {})", move_steps);
+  if (!(move_scale > 0.0 && move_scale <= 100.0)) return fmt::format("move scale must lie in (0, 100] (got {})", move_scale);
+  if (move_window > 0 && motion_sampling != MotionSampling::kPerScan)
+    return "resample-move (move window > 0) needs per-scan motion sampling";
+  if (move_window > 0 && (relocalize || close_loops))
+    return "resample-move (move window > 0) does not combine with relocalisation or loop closing";
   const double k = association.known_gate_probability;
   if (!(k > 0.0 && k <= 1.0)) return fmt::format("known-association gate probability must lie in (0, 1] (got {})", k);
   return "";

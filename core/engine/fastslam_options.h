@@ -59,6 +59,14 @@ struct FastSlamOptions {
   // bandwidth (d = 3). Copies of one parent then part at the next draw, which FastSLAM 2.0's proposal steers
   // with the scan. 0: off.
   double roughen = 0.0;
+  // Resample-move (Gilks & Berzuini 2001; core/engine/resample_move.h): after each resampling, every particle
+  // tries move_steps Metropolis-Hastings proposals over the poses of its last move_window scans, its pairings
+  // held fixed and the landmarks the window touched recomputed along the proposed path, at scales move_scale,
+  // move_scale / 2, ... times the proposed scan's prediction standard deviation. 0 scans: off. Needs per-scan
+  // motion sampling, and does not combine with relocalisation or loop closing, which rewrite paths themselves.
+  int move_window = 0;
+  int move_steps = 4;
+  double move_scale = 1.0;
 
   // Student-t with nu degrees of freedom (Lange, Little & Taylor 1989) has the Gaussian's centre and heavy
   // tails: the weights do not collapse on one measurement 4 sigma out, and the proposal and landmark updates

@@ -42,6 +42,20 @@ class PersistentHistory {
     release(old);
   }
 
+  // The newest n entries (or all there are), newest first; O(n).
+  std::vector<Entry> newest_entries(std::size_t n) const {
+    std::vector<Entry> out;
+    for (const Node* node = head_; node && out.size() < n; node = node->parent) out.push_back(node->entry);
+    return out;
+  }
+  // Drops the newest n entries (a revised path is pushed again); the older ones stay shared.
+  void drop_newest(std::size_t n) {
+    Node* old = head_;
+    for (std::size_t i = 0; i < n && head_; ++i) head_ = head_->parent;
+    retain(head_);
+    release(old);
+  }
+
   bool empty() const { return head_ == nullptr; }
   // The history must not be empty.
   const Entry& newest() const { return head_->entry; }

@@ -24,6 +24,7 @@ enum class RandomPurpose : std::uint32_t {
   kWorld = 5,
   kProblem = 6,
   kSurvey = 7,
+  kMove = 8,
 };
 
 class RandomStream {

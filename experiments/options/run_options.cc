@@ -71,6 +71,18 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
                   "(roughen * h_opt)^2 times the set's pose covariance (Musso et al. 2001); 0 = off, 1 = h_opt")
       ->check(within(0.0, 10.0))
       ->capture_default_str();
+  cmd.add_option("--move-window", config.options.move_window,
+                  "Resample-move: after each resampling every particle revises the poses of its last N scans by "
+                  "Metropolis-Hastings, pairings fixed and landmarks recomputed (Gilks & Berzuini 2001); 0 = off")
+      ->check(within(0, 10000))
+      ->capture_default_str();
+  cmd.add_option("--move-steps", config.options.move_steps, "Resample-move: proposals per particle and resampling")
+      ->check(within(1, 1000))
+      ->capture_default_str();
+  cmd.add_option("--move-scale", config.options.move_scale,
+                  "Resample-move: the first proposal's step in prediction standard deviations (halved at each next)")
+      ->check(within(1e-6, 100.0))
+      ->capture_default_str();
   cmd.add_option("--max-hypotheses", config.options.association.max_hypotheses,
                   "Search budget of JCBB and the interpretation trees per particle and scan; a search that reaches it "
                   "answers with its best hypothesis so far and is counted in result.json budget_exhausted")

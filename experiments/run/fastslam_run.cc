@@ -67,7 +67,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   std::vector<TimedPose>& mean_trajectory = out.mean_trajectory;
   mean_trajectory.push_back({scenario.start_time_s, filter->estimate().mean});
   double n_eff_sum = 0.0;
-  std::int64_t resamples = 0, hypotheses = 0, tests = 0, budget_exhausted = 0;
+  std::int64_t resamples = 0, hypotheses = 0, tests = 0, budget_exhausted = 0, moves_proposed = 0, moves_accepted = 0;
   Progress progress(fmt::format("run {}/{}/{}", to_string(config.options.version), config.map, config.assoc),
                     static_cast<std::int64_t>(scenario.steps.size()), config.progress);
 
@@ -83,6 +83,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     hypotheses += stats.hypotheses;
     tests += stats.tests;
     budget_exhausted += stats.budget_exhausted;
+    moves_proposed += stats.moves_proposed;
+    moves_accepted += stats.moves_accepted;
     StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats.n_eff, stats.resampled,
                                                            stats.best_landmarks, stats.hypotheses, std::nullopt,
                                                            stats.relocalized});
@@ -143,7 +145,10 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
                  {"student_dof", config.options.student_dof},
                  {"known_gate_probability", config.options.association.known_gate_probability},
                  {"gate_covariance", std::string(to_string(config.options.gate_covariance))},
-                 {"roughen", config.options.roughen}};
+                 {"roughen", config.options.roughen},
+                 {"move_window", config.options.move_window},
+                 {"move_steps", config.options.move_steps},
+                 {"move_scale", config.options.move_scale}};
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
   r.update(accuracy_fields(scenario, truth, best, map));
@@ -179,6 +184,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["compatibility_tests"] = tests;
   r["budget_exhausted"] = budget_exhausted;
   r["relocalizations"] = filter->relocalizations();
+  // Resample-move's acceptance rate (null when off): near 0 its proposals are too bold, near 1 too timid.
+  r["move_acceptance"] = moves_proposed > 0 ? Json(double(moves_accepted) / moves_proposed) : Json(nullptr);
   r["map_bytes_per_particle"] = memory.bytes / particles;
   r["map_shared_fraction"] = memory.bytes ? double(memory.shared_bytes) / memory.bytes : 0.0;
   r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -248,7 +248,7 @@ const std::vector<std::string>& known_metrics() {
       "consistency_horizon_scan", "dead_reckoning_ate_m", "hypotheses",
       "landmark_rmse_m", "landmarks", "loop_closures", "map_bytes_per_particle", "map_shared_fraction", "n_eff_mean",
       "nees_in_band_fraction", "nees_mean", "nees_median", "observed_true_landmarks", "peak_rss_bytes",
-      "provisional_landmarks", "rejected_measurements", "relocalizations", "resamples", "scenario_duration_s",
+      "move_acceptance", "provisional_landmarks", "rejected_measurements", "relocalizations", "resamples", "scenario_duration_s",
       "spurious_landmarks", "step_time_median_s", "step_time_p95_s", "steps", "true_landmarks", "wall_time_s",
       // arbor smooth only
       "associations_used", "build_time_s", "factors", "final_cost", "gradient_max_norm", "initial_cost",
