@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <span>
 #include <unordered_map>
@@ -185,8 +186,10 @@ class FastSlam {
   // mark them confirmed, or an unknown-association filter will drop them as unconfirmed.
   void set_prior_map(const Map& map) {
     ARBOR_CHECK(step_index_ == 0, "a prior map is set before the first step, not at step {}", step_index_);
-    LandmarkId next = 0;
-    map.for_each([&](const Landmark& lm) { next = std::max(next, lm.id + 1); });
+    std::int64_t next = 0;
+    map.for_each([&](const Landmark& lm) { next = std::max<std::int64_t>(next, std::int64_t{lm.id} + 1); });
+    // The readers keep ids to 2^30 - 1 (core/io/field_limits.h); the filter numbers its own landmarks above.
+    ARBOR_CHECK(next <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks", next - 1);
     for (auto& p : particles_) {
       p.map = map;
       p.next_id = next;
@@ -649,6 +652,7 @@ class FastSlam {
       if (s.decision[k] != kNewLandmark) continue;
       log_weight += log_likelihood_unpaired_;
       Landmark lm;
+      ARBOR_CHECK(p.next_id < std::numeric_limits<LandmarkId>::max(), "landmark ids are exhausted");
       lm.id = p.next_id++;
       lm.mean = range_bearing_inverse(p.pose, measurements[k].z());
       lm.cov = range_bearing_initial_covariance(p.pose, measurements[k].z(), R_);

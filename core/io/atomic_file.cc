@@ -80,6 +80,19 @@ void forget_finished_run(const std::string& out_dir) {
   if (error) throw EnvironmentError(result.string(), fmt::format("cannot remove the previous run's result: {}", error.message()));
 }
 
+void prepare_run_directory(const std::string& out_dir) {
+  if (out_dir.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error) throw EnvironmentError(out_dir, fmt::format("cannot create the output directory: {}", error.message()));
+  forget_finished_run(out_dir);
+  const std::string probe = (std::filesystem::path(out_dir) / fmt::format(".write_check.{}", ::getpid())).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw EnvironmentError(out_dir, fmt::format("cannot write in the output directory: {}", std::strerror(errno)));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 void append_line_durably(const std::string& path, std::string_view text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   if (fd < 0) throw EnvironmentError(path, fmt::format("cannot append: {}", std::strerror(errno)));

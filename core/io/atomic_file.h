@@ -17,6 +17,11 @@ void write_file_atomically(const std::string& path, std::string_view text);
 // would leave the old result.json beside new trajectory and map files, and look finished.
 void forget_finished_run(const std::string& out_dir);
 
+// Before a run starts: forgets a finished run there (above), creates out_dir and checks that a file can be
+// written in it, so an unwritable --out is an error before the run's minutes are spent, not after.
+// Throws EnvironmentError (exit 1) naming the directory.
+void prepare_run_directory(const std::string& out_dir);
+
 // Appends text (one or more complete lines) with a single write() on an O_APPEND descriptor followed by
 // fsync, so a killed process leaves either the whole row or none of it. Throws EnvironmentError on failure.
 void append_line_durably(const std::string& path, std::string_view text);

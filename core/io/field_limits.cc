@@ -47,7 +47,9 @@ double range_field(const TextReader& in, std::size_t i, std::string_view name) {
 
 std::int32_t landmark_id_field(const TextReader& in, std::size_t i, std::string_view name) {
   const std::int64_t id = in.integer(i, name);
-  if (id < 0 || id > INT32_MAX) in.fail(name, "landmark id must be a non-negative 32-bit integer");
+  if (id < 0 || id > lim::kMaxLandmarkId)
+    in.fail(name, fmt::format("landmark id {} is outside [0, {}] (the ids above are the filter's, for the landmarks "
+                              "it starts after a prior map's)", id, lim::kMaxLandmarkId));
   return static_cast<std::int32_t>(id);
 }
 

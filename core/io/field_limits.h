@@ -27,6 +27,9 @@ inline constexpr double kMaxNoiseDensity = 1e6;    // motion noise densities
 inline constexpr double kMaxControl = 1e6;         // |u| of each control field (speeds, angles, odometry)
 inline constexpr double kMaxSignature = 1e6;       // |signature|
 inline constexpr int kMaxMeasurementsPerScan = 10'000;  // a budget: every strategy's work grows with it
+// Landmark ids (truth ids, a prior map's ids) end at 2^30 - 1: the filter numbers the landmarks it starts after
+// a prior map's largest id, and a 32-bit id must not overflow there.
+inline constexpr std::int32_t kMaxLandmarkId = (1 << 30) - 1;
 }  // namespace scenario_limits
 
 // Field i of the current line as a number within [lo, hi]; the error names the field and the limits.
@@ -41,7 +44,7 @@ double control_field(const TextReader& in, std::size_t i, std::string_view name)
 // Integer milliseconds (Victoria Park's clock) within kMaxTime.
 std::int64_t time_ms_field(const TextReader& in, std::size_t i, std::string_view name);
 double range_field(const TextReader& in, std::size_t i, std::string_view name);       // [0, kMaxRange] m
-// A landmark id: a non-negative 32-bit integer.
+// A landmark id: within [0, kMaxLandmarkId].
 std::int32_t landmark_id_field(const TextReader& in, std::size_t i, std::string_view name);
 
 }  // namespace arbor

@@ -116,7 +116,8 @@ Scenario read_scenario(const std::string& path) {
         m.truth_id = kTruthClutter;
       } else if (truth != "-") {
         const std::int64_t id = in.integer(4, "truth");
-        if (id < 0 || id > INT32_MAX) in.fail("truth", "landmark id must be a non-negative 32-bit integer, 'clutter' or '-'");
+        if (id < 0 || id > lim::kMaxLandmarkId)
+          in.fail("truth", fmt::format("truth must be a landmark id in [0, {}], 'clutter' or '-'", lim::kMaxLandmarkId));
         m.truth_id = static_cast<std::int32_t>(id);
       }
       s.steps.back().measurements.push_back(m);

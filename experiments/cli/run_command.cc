@@ -23,7 +23,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
     *action = [=] {
       // Before anything can fail: a bad scenario or option must not leave the previous run's result.json
       // marking this directory finished (run_fastslam forgets it too, for callers of the library).
-      forget_finished_run(config->out_dir);
+      prepare_run_directory(config->out_dir);
       apply_run_choices(*choices, *config);
       config->progress = !*quiet;
       const Scenario scenario = read_scenario(config->scenario_path);

@@ -71,7 +71,7 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
   cmd->add_flag("--quiet", *quiet, "No summary on stdout");
   cmd->callback([=] {
     *action = [=] {
-      forget_finished_run(config->out_dir);  // before anything can fail (see run_command.cc)
+      prepare_run_directory(config->out_dir);  // before anything can fail (see run_command.cc)
       if (config->scenario_path.empty() && config->isam_path.empty())
         throw InputError("", 0, "scenario", "give --scenario FILE or --isam FILE");
       if (!from_string(*solver, &config->options.linear_solver))

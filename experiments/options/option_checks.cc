@@ -2,6 +2,8 @@
 #include "experiments/options/option_checks.h"
 
 #include <cerrno>
+#include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -49,7 +51,13 @@ const CLI::Validator kNonEmpty(
 const CLI::Validator& unsigned_number() {
   static const CLI::Validator check(
       [](std::string& value) {
-        return value.find('-') == 0 ? "must not be negative (got " + value + ")" : std::string();
+        if (value.find('-') == 0) return "must not be negative (got " + value + ")";
+        // CLI11 reads a decimal beyond 2^64 - 1 into an unsigned 64-bit seed as 2^64 - 1, silently.
+        std::uint64_t parsed = 0;
+        const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), parsed);
+        if (error == std::errc::result_out_of_range)
+          return "must be at most 18446744073709551615 (2^64 - 1) (got " + value + ")";
+        return std::string();
       },
       "", "unsigned");
   return check;

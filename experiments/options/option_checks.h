@@ -2,7 +2,8 @@
 //   * no option takes an empty value (`run --out ""` printed "wrote /result.json" and wrote nothing);
 //   * a number must be finite (CLI11 reads "nan" and "inf" into a double, and its Range validators let NaN
 //     through, since every comparison with NaN is false);
-//   * an unsigned one has no minus sign (CLI11 reads "-1" into an unsigned 64-bit seed as 2^64 - 1).
+//   * an unsigned one has no minus sign (CLI11 reads "-1" into an unsigned 64-bit seed as 2^64 - 1) and fits
+//     in 64 bits (CLI11 clamps a larger one to 2^64 - 1).
 // Ranges stay with each option.
 #ifndef ARBOR_EXPERIMENTS_OPTIONS_OPTION_CHECKS_H_
 #define ARBOR_EXPERIMENTS_OPTIONS_OPTION_CHECKS_H_
@@ -11,7 +12,7 @@
 
 namespace arbor::cli {
 
-// For an unsigned option (seeds, counts): refuses a value with a leading minus sign.
+// For an unsigned option (seeds, counts): refuses a value with a leading minus sign or beyond 2^64 - 1.
 const CLI::Validator& unsigned_number();
 
 // For a probability that feeds a chi-square quantile: strictly inside (0, 1).

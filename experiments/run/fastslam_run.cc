@@ -55,7 +55,7 @@ std::vector<Landmark> read_prior_map(const std::string& path) {
 
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const auto wall_start = std::chrono::steady_clock::now();
-  forget_finished_run(config.out_dir);
+  prepare_run_directory(config.out_dir);
   std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
   if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
   const int threads = config.options.threads > 0 ? config.options.threads : tbb::info::default_concurrency();

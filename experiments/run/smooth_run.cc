@@ -114,7 +114,7 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
   const auto wall_start = std::chrono::steady_clock::now();
   std::string why;
   if (!config.options.validate(&why)) throw InputError("", 0, "options", why);
-  forget_finished_run(config.out_dir);
+  prepare_run_directory(config.out_dir);
   SmoothOutput out;
   Json& r = out.result;
   FactorGraph graph;
