@@ -417,6 +417,12 @@ class FastSlam {
     return z.x() <= sensor_.max_range_m + options_.candidate_range_margin_m + margin.range_m &&
            std::abs(z.y()) <= 0.5 * sensor_.fov_rad + options_.candidate_bearing_margin_rad + margin.bearing_rad;
   }
+  // Whether a landmark predicted at z is an association candidate. The oracle must find the landmark an id
+  // names wherever the estimate puts it: were it left out, a second landmark would start for the same id.
+  // Every other strategy sees only what could be in view.
+  bool is_candidate(const Vec2& z, const ViewMargin& margin) const {
+    return Assoc::kTraits.uses_ground_truth || in_candidate_view(z, margin);
+  }
   bool in_evidence_view(const Vec2& z) const {
     return z.x() <= sensor_.max_range_m - options_.evidence_range_margin_m &&
            z.x() >= sensor_.min_range_m + options_.evidence_range_margin_m &&
@@ -699,9 +705,7 @@ class FastSlam {
     s.candidate_of.clear();
     for (std::size_t j = 0; j < s.nearby.size(); ++j) {
       const AssociationCandidate c = candidate(s.nearby[j], pose);
-      // The oracle must find the landmark an id names wherever the estimate puts it: were it left out, a
-      // second landmark would start for the same id. Every other strategy sees only what could be in view.
-      if (!Assoc::kTraits.uses_ground_truth && !in_candidate_view(c.z_hat, margin)) continue;
+      if (!is_candidate(c.z_hat, margin)) continue;
       problem.candidates.push_back(c);
       s.candidate_of.push_back(static_cast<int>(j));
     }
@@ -726,7 +730,7 @@ class FastSlam {
     out.clear();
     for (const Landmark& lm : s.nearby) {
       const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean);
-      if (Assoc::kTraits.uses_ground_truth || in_candidate_view(z_hat, margin)) out.push_back({lm.id, z_hat});
+      if (is_candidate(z_hat, margin)) out.push_back({lm.id, z_hat});
     }
     s.nearby.clear();
   }
@@ -736,30 +740,22 @@ class FastSlam {
   // total covariance, what the mixture's innovation covariance adds to a particle's own. Serial, in particle
   // order, so the sums are the same whatever the thread count.
   void reduce_set_spread() {
-    struct Sum {
-      Vec2 reference;
-      double w = 0.0;
-      Vec2 first = Vec2::Zero();
-      Mat2 second = Mat2::Zero();
-    };
-    std::unordered_map<LandmarkId, Sum> sums;
+    set_spread_.clear();
     for (std::size_t i = 0; i < particles_.size(); ++i)
       for (const PredictedMeasurement& m : predicted_[i]) {
-        auto [it, fresh] = sums.try_emplace(m.id);
-        Sum& sum = it->second;
+        auto [it, fresh] = set_spread_.try_emplace(m.id);
+        SetSpread& sum = it->second;
         if (fresh) sum.reference = m.z_hat;
         const Vec2 d = range_bearing_innovation(m.z_hat, sum.reference);
         sum.w += weights_[i];
         sum.first += weights_[i] * d;
         sum.second += weights_[i] * d * d.transpose();
       }
-    set_spread_.clear();
-    for (const auto& [id, sum] : sums) {
-      if (!(sum.w > 0.0)) continue;
+    for (auto& [id, sum] : set_spread_) {
+      if (!(sum.w > 0.0)) continue;  // the spread stays zero
       const Vec2 mean = sum.first / sum.w;
-      Mat2 spread = sum.second / sum.w - mean * mean.transpose();
-      spread = 0.5 * (spread + spread.transpose());
-      set_spread_.emplace(id, spread);
+      sum.spread = sum.second / sum.w - mean * mean.transpose();
+      sum.spread = 0.5 * (sum.spread + sum.spread.transpose());
     }
   }
 
@@ -772,7 +768,7 @@ class FastSlam {
     c.truth_label = lm.truth_label;
     c.S = H_m * lm.cov * H_m.transpose() + R_;
     if (!set_spread_.empty())
-      if (const auto it = set_spread_.find(lm.id); it != set_spread_.end()) c.S += it->second;
+      if (const auto it = set_spread_.find(lm.id); it != set_spread_.end()) c.S += it->second.spread;
     c.position = lm.mean;
     c.position_cov = lm.cov;
     c.signature = lm.signature;
@@ -1089,7 +1085,15 @@ class FastSlam {
     Vec2 z_hat;
   };
   std::vector<std::vector<PredictedMeasurement>> predicted_;
-  std::unordered_map<LandmarkId, Mat2> set_spread_;
+  // Per landmark, the weighted sums over the particles that predict it, then the spread they give.
+  struct SetSpread {
+    Vec2 reference;
+    double w = 0.0;
+    Vec2 first = Vec2::Zero();
+    Mat2 second = Mat2::Zero();
+    Mat2 spread = Mat2::Zero();
+  };
+  std::unordered_map<LandmarkId, SetSpread> set_spread_;
   bool moves_ = false;  // FastSlamOptions::move_window > 0
   std::optional<Mat3> roughening_kernel_;  // FastSlamOptions::roughen: added at the step after a resampling
   std::int64_t step_index_ = 0;
