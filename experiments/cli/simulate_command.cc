@@ -1,5 +1,7 @@
 // `arbor simulate`: writes a simulated scenario (world, loop trajectory, noisy odometry and measurements,
 // ground truth) in the scenario text format.
+#include <filesystem>
+
 #include <fmt/core.h>
 
 #include "core/engine/fastslam_options.h"
@@ -29,6 +31,8 @@ void add_simulate_command(CLI::App& app, CommandAction* action) {
   *action = nullptr;
   cmd->callback([=] {
     *action = [=] {
+      if (!survey_out->empty() && std::filesystem::weakly_canonical(*survey_out) == std::filesystem::weakly_canonical(*out))
+        throw InputError("", 0, "survey-out", fmt::format("--survey-out {} is the scenario file --out; give it its own", *survey_out));
       const Scenario scenario = simulate(simulation_options(*choices));
       write_scenario(scenario, *out);
       std::size_t measurements = 0;

@@ -20,6 +20,8 @@ void require(bool ok, const char* field, const std::string& message) {
 }
 
 // Knuth's multiplication method; rates here are small (a few per scan).
+constexpr double kMaxClutterRate = 500.0;
+
 int sample_poisson(double rate, RandomStream& rng) {
   if (rate <= 0.0) return 0;
   const double limit = std::exp(-rate);
@@ -47,11 +49,18 @@ Scenario simulate(const SimulationOptions& o) {
   require(o.controls_per_scan >= 1 && o.controls_per_scan <= 1000, "controls-per-scan",
           fmt::format("controls per scan must lie in [1, 1000] (got {})", o.controls_per_scan));
   require(o.speed_mps > 0.0 && o.dt_s > 0.0, "speed", "speed and dt must be positive");
-  require(o.clutter_rate >= 0.0, "clutter", fmt::format("clutter rate must not be negative (got {})", o.clutter_rate));
+  // The Poisson sampler multiplies uniforms down to exp(-rate), which underflows above a rate of about 745:
+  // larger rates all gave about 755 measurements a scan while the metadata claimed the rate asked for.
+  require(o.clutter_rate >= 0.0 && o.clutter_rate <= kMaxClutterRate, "clutter",
+          fmt::format("clutter rate must lie in [0, {}] per scan (got {})", kMaxClutterRate, o.clutter_rate));
   require(o.detection_probability > 0.0 && o.detection_probability <= 1.0, "detection",
           "detection probability must lie in (0, 1]");
   require(o.loop_inset_fraction > 0.0 && o.loop_inset_fraction < 0.5, "inset", "loop inset must lie in (0, 0.5)");
   require(std::isfinite(o.kidnap_time_s), "kidnap", "kidnap time must be finite");
+  // A kidnap after the last scan never happens, and the metadata would record one.
+  const double last_scan_s = (o.steps - 1) * o.dt_s;
+  require(o.kidnap_time_s < 0.0 || o.kidnap_time_s <= last_scan_s, "kidnap",
+          fmt::format("kidnap time {} s is after the last scan ({} s)", o.kidnap_time_s, last_scan_s));
 
   const World world = make_world(o.world);
   Scenario s;

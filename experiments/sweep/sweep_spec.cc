@@ -133,6 +133,7 @@ class SpecReader {
       const double step = real_member(*range, field, "step");
       if (from > to) fail(line_of(node), field, fmt::format("bad range: from = {} is greater than to = {}", from, to));
       if (!(step > 0.0)) fail(line_of(node), field, fmt::format("bad range: step must be positive, got {}", step));
+      if (from < lo || to > hi) fail(line_of(node), field, fmt::format("bad range: [{}, {}] goes outside [{}, {}]", from, to, lo, hi));
       if ((to - from) / step >= kMaxGridSize) fail(line_of(node), field, "bad range: more than a million values");
       // Values are from + i*step (never accumulated), so 0.1-steps do not drift; 'to' is kept within 1e-9 steps.
       for (std::int64_t i = 0;; ++i) {
@@ -201,8 +202,9 @@ class SpecReader {
     const toml::node* n = t.get(key);
     if (!n) fail(line_of(t), field, fmt::format("range needs '{}'", key));
     if (const auto* i = n->as_integer()) return static_cast<double>(i->get());
-    if (const auto* f = n->as_floating_point()) return f->get();
-    fail(line_of(*n), qualified(field, key), "expected a number");
+    // TOML has nan and inf: a range ending at nan never ends (every comparison with it is false).
+    if (const auto* f = n->as_floating_point(); f && std::isfinite(f->get())) return f->get();
+    fail(line_of(*n), qualified(field, key), "expected a finite number");
   }
 
   std::string path_;

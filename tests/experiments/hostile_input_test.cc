@@ -245,6 +245,13 @@ std::vector<HostileCase> hostile_cases() {
        "Landmark_Groundtruth.dat" + field_re + "subject'"},
       {"messages", "sweep_metric_typo", file("s.toml", sweep_spec("metrics = [\"ate_rmse\"]", "particles = 4\nseed = 1\n")),
        "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml" + field_re + "sweep.metrics'"},
+      {"messages", "simulate_clutter_beyond_the_sampler", no_setup, kSimulate + "--clutter 5000", 2, "clutter rate must lie in"},
+      {"messages", "simulate_kidnap_after_the_run", no_setup, kSimulate + "--kidnap 1e300", 2, "after the last scan"},
+      {"messages", "simulate_survey_out_is_out", no_setup, kSimulate + "--survey-out {dir}/out/../out/s.scn", 2,
+       "field 'survey-out'"},
+      {"messages", "sweep_range_to_nan",
+       file("s.toml", sweep_spec("timeout_s = { from = 0.0, to = nan, step = 0.001 }", "particles = 4\nseed = 1\n")),
+       "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml" + field_re + "sweep.timeout_s.to'"},
   };
 }
 
