@@ -80,7 +80,7 @@ std::string cell_text(const nlohmann::ordered_json& value) {
   return value.dump();
 }
 
-std::vector<ResultRow> read_result_rows(const std::string& jsonl_path) {
+std::vector<ResultRow> read_result_rows(const std::string& jsonl_path, std::vector<int>* lines) {
   std::vector<ResultRow> rows;
   std::ifstream in(jsonl_path, std::ios::binary);
   if (!in) return rows;
@@ -99,12 +99,13 @@ std::vector<ResultRow> read_result_rows(const std::string& jsonl_path) {
     ResultRow row;
     try {
       row = ResultRow::parse(body);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(jsonl_path, line, "", fmt::format("malformed JSON row: {}", e.what()));
+    } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers beyond a double (1e999)
+      throw InputError(jsonl_path, line, "row", fmt::format("malformed JSON row: {}", e.what()));
     }
     if (!row.is_object() || !row.contains("key") || !row["key"].is_string())
       throw InputError(jsonl_path, line, "key", "a result row must be a JSON object with a string 'key'");
     rows.push_back(std::move(row));
+    if (lines) lines->push_back(line);
   }
   return rows;
 }

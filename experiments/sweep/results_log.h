@@ -32,8 +32,9 @@ std::vector<std::pair<std::string, nlohmann::ordered_json>> param_cells(const Ru
 std::string cell_text(const nlohmann::ordered_json& value);
 
 // Reads DIR/results.jsonl; a missing file is an empty list. A last line without '\n' is ignored; a complete
-// line that is not a JSON object with a string "key" throws InputError naming the line.
-std::vector<ResultRow> read_result_rows(const std::string& jsonl_path);
+// line that is not a JSON object with a string "key" throws InputError naming the line. lines, when given,
+// receives each row's line number.
+std::vector<ResultRow> read_result_rows(const std::string& jsonl_path, std::vector<int>* lines = nullptr);
 
 // Cuts a trailing partial line (a write interrupted by power loss) so the next append starts a fresh line.
 void drop_partial_last_line(const std::string& jsonl_path);

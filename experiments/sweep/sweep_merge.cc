@@ -15,25 +15,59 @@
 #include "experiments/sweep/sweep_manifest.h"
 
 namespace arbor {
+namespace {
+
+// Fields that differ between two runs of one configuration: time, memory and where and when it ran.
+bool is_timing_or_provenance(const std::string& field) {
+  for (const char* part : {"time", "wall", "rss", "cpu", "finished_at", "host", "exit_code", "commit", "compiler", "build"})
+    if (field.find(part) != std::string::npos) return true;
+  return false;
+}
+
+// The first result field (neither timing nor provenance) on which two rows of one run key differ; "" if none.
+std::string first_differing_result(const ResultRow& a, const ResultRow& b) {
+  for (const auto& [field, value] : a.items())
+    if (!is_timing_or_provenance(field) && (!b.contains(field) || b[field] != value)) return field;
+  for (const auto& [field, value] : b.items())
+    if (!is_timing_or_provenance(field) && !a.contains(field)) return field;
+  return "";
+}
+
+}  // namespace
 
 MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::string& out) {
   if (inputs.empty()) throw InputError("", 0, "DIR", "merge needs at least one sweep directory");
   MergeSummary summary;
   std::optional<SweepManifest> first;
   std::string first_dir;
-  std::map<std::string, ResultRow> by_key;
-  // Adds a directory's rows, one per run key: a finished ("ok") row wins over a failed one.
+  std::map<std::string, std::pair<ResultRow, std::string>> by_key;  // the row, and the file:line it came from
+  // Adds a directory's rows, one per run key: a finished ("ok") row wins over a failed one. Two finished rows
+  // of one key must agree on every result (runs are deterministic); they may differ in timing and provenance.
   const auto fold = [&](const std::string& dir) {
-    for (auto& row : read_result_rows(dir + "/" + kResultsJsonl)) {
+    const std::string path = dir + "/" + kResultsJsonl;
+    std::vector<int> lines;
+    std::vector<ResultRow> rows = read_result_rows(path, &lines);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      ResultRow& row = rows[i];
       const std::string key = row["key"].get<std::string>();
+      const std::string where = fmt::format("{}:{}", path, lines[i]);
       const auto it = by_key.find(key);
       if (it == by_key.end()) {
-        by_key.emplace(key, std::move(row));
+        by_key.emplace(key, std::make_pair(std::move(row), where));
         continue;
       }
       ++summary.duplicates;
       const auto is_ok = [](const ResultRow& r) { return r.value("status", std::string()) == "ok"; };
-      if (!is_ok(it->second) && is_ok(row)) it->second = std::move(row);
+      ResultRow& kept = it->second.first;
+      if (is_ok(kept) && is_ok(row)) {
+        if (const std::string field = first_differing_result(kept, row); !field.empty())
+          throw InputError(path, lines[i], field,
+                           fmt::format("run {} has {} here and {} at {}; refusing to keep either silently", key,
+                                       row.value(field, ResultRow()).dump(), kept.value(field, ResultRow()).dump(),
+                                       it->second.second));
+      } else if (is_ok(row)) {
+        it->second = std::make_pair(std::move(row), where);
+      }
     }
   };
   for (const auto& dir : inputs) {
@@ -59,7 +93,7 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
     fold(out);
   }
   std::vector<ResultRow> rows;
-  for (auto& [key, row] : by_key) rows.push_back(std::move(row));
+  for (auto& [key, entry] : by_key) rows.push_back(std::move(entry.first));
   write_result_files(out, rows, first->columns);
   SweepManifest merged = *first;
   merged.shard = "merged";

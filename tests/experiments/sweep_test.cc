@@ -156,6 +156,25 @@ TEST_F(SweepEndToEnd, MergeRefusesShardsOfDifferentSpecs) {
   EXPECT_EQ(run_to_end({binary_, "sweep", dir / "other.toml", "--out", *scratch_ / "reference"}, dir / "r.log"), 2);
 }
 
+// Runs are deterministic, so two finished rows of one run key that disagree on a result are a conflict (shards
+// of different builds, or an edited file): merge names the row and the field instead of keeping the first.
+TEST_F(SweepEndToEnd, MergeRefusesTwoFinishedRowsOfOneRunThatDisagree) {
+  ScratchDir dir("conflict");
+  std::filesystem::copy(*scratch_ / "reference", dir / "edited", std::filesystem::copy_options::recursive);
+  const std::string jsonl = (dir / "edited") + "/results.jsonl";
+  std::string text = read_text(jsonl);
+  const std::size_t field = text.find("\"ate_rmse_m\":");
+  ASSERT_NE(field, std::string::npos);
+  ASSERT_LT(field, text.find('\n')) << "the first row must hold the field";
+  const std::size_t value = field + std::string("\"ate_rmse_m\":").size();
+  text.replace(value, text.find(',', value) - value, "99.5");
+  write_text(jsonl, text);
+  EXPECT_EQ(run_to_end({binary_, "merge", *scratch_ / "reference", dir / "edited", "--out", dir / "merged"}, dir / "m.log"), 2);
+  const std::string log = read_text(dir / "m.log");
+  EXPECT_NE(log.find("results.jsonl:1: field 'ate_rmse_m'"), std::string::npos) << log;
+  EXPECT_NE(log.find("99.5"), std::string::npos) << log;
+}
+
 // Two processes never write one --out: while one holds the directory (here this test, as the binary sees
 // it), a sweep into it exits 2 before writing anything, whatever its spec.
 TEST_F(SweepEndToEnd, ASecondProcessIntoTheSameOutIsRefused) {
