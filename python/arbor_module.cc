@@ -88,8 +88,21 @@ std::function<void()> interrupt_check() {
   throw InputError("Scenario.from_arrays", 0, field, message);
 }
 
-void check_within(double v, double lo, double hi, const std::string& field) {
-  if (!(v >= lo && v <= hi)) array_error(field, fmt::format("{} is outside [{}, {}]", v, lo, hi));
+// The checks of the scenario reader (docs/scenario_format.md, "Limits"), for arrays: `source` names the call
+// (Scenario.from_arrays, Filter.step) and `field` the array and element.
+void check_within(double v, double lo, double hi, const std::string& field, const char* source = "Scenario.from_arrays") {
+  if (!(v >= lo && v <= hi)) throw InputError(source, 0, field, fmt::format("{} is outside [{}, {}]", v, lo, hi));
+}
+// A bearing within [-pi, pi] (as the reader allows, up to rounding), returned wrapped.
+double checked_bearing(double v, const std::string& field, const char* source = "Scenario.from_arrays") {
+  check_within(v, -kPi - 1e-9, kPi + 1e-9, field, source);
+  return wrap_angle(v);
+}
+// A landmark id given as a number: an integer within [lo, kMaxLandmarkId] (NaN and 1.5 are not ids).
+std::int32_t checked_id(double v, std::int32_t lo, const std::string& field) {
+  check_within(v, lo, scenario_limits::kMaxLandmarkId, field);
+  if (v != std::floor(v)) array_error(field, fmt::format("{} is not an integer id", v));
+  return static_cast<std::int32_t>(v);
 }
 
 // Builds a scenario from the user's own arrays, checked against the limits of docs/scenario_format.md; each
@@ -143,9 +156,9 @@ Scenario scenario_from_arrays(const Scenario& like, Array times, Array controls,
     const std::size_t n = steps.size();
     if (range.size() != static_cast<py::ssize_t>(n) || bearing.size() != static_cast<py::ssize_t>(n))
       array_error("measurements", "'step', 'range' and 'bearing' must have the same length");
-    py::array_t<std::int32_t> truth_ids;
+    Array truth_ids;
     if (z.contains("truth_id")) {
-      truth_ids = z["truth_id"].cast<py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>>();
+      truth_ids = z["truth_id"].cast<Array>();  // as doubles, so that NaN and 1.5 are seen, not cast to ints
       if (truth_ids.size() != static_cast<py::ssize_t>(n)) array_error("measurements['truth_id']", "must have one id per measurement");
     }
     for (std::size_t i = 0; i < n; ++i) {
@@ -156,8 +169,9 @@ Scenario scenario_from_arrays(const Scenario& like, Array times, Array controls,
       m.range_m = range.at(i);
       m.bearing_rad = bearing.at(i);
       check_within(m.range_m, 0.0, lim::kMaxRange, fmt::format("measurements['range'][{}]", i));
-      check_within(m.bearing_rad, -1e3, 1e3, fmt::format("measurements['bearing'][{}]", i));
-      if (truth_ids.size() > 0) m.truth_id = truth_ids.at(i);
+      m.bearing_rad = checked_bearing(m.bearing_rad, fmt::format("measurements['bearing'][{}]", i));
+      // -2: unknown (real data), -1: clutter, else the true landmark's id.
+      if (truth_ids.size() > 0) m.truth_id = checked_id(truth_ids.at(i), kTruthUnknown, fmt::format("measurements['truth_id'][{}]", i));
       ScenarioStep& step = s.steps[k];
       step.has_scan = true;
       step.measurements.push_back(m);
@@ -181,7 +195,10 @@ Scenario scenario_from_arrays(const Scenario& like, Array times, Array controls,
     for (py::ssize_t i = 0; i < lm.shape(0); ++i) {
       for (int j = 1; j < 3; ++j)
         check_within(lm.at(i, j), -lim::kMaxCoordinate, lim::kMaxCoordinate, fmt::format("truth_landmarks[{}, {}]", i, j));
-      s.truth_landmarks.push_back({static_cast<std::int32_t>(lm.at(i, 0)), {lm.at(i, 1), lm.at(i, 2)}});
+      const std::int32_t id = checked_id(lm.at(i, 0), 0, fmt::format("truth_landmarks[{}, 0]", i));
+      for (const auto& other : s.truth_landmarks)
+        if (other.id == id) array_error(fmt::format("truth_landmarks[{}, 0]", i), fmt::format("landmark {} is listed twice", id));
+      s.truth_landmarks.push_back({id, {lm.at(i, 1), lm.at(i, 2)}});
     }
   }
   return s;
@@ -338,24 +355,35 @@ class PyFilter {
 
   void step(double time_s, const Array& control, const Array& ranges, const Array& bearings, bool scan,
             const py::object& truth_pose) {
+    // The same limits as a scenario file and Scenario.from_arrays: a NaN control made every pose NaN.
+    namespace lim = scenario_limits;
+    constexpr const char* kSource = "Filter.step";
     ScenarioStep s;
+    check_within(time_s, -lim::kMaxTime, lim::kMaxTime, "time", kSource);
     s.time_s = time_s;
-    if (control.size() != 3) throw InputError("Filter.step", 0, "control", "needs three values");
-    s.control = {control.at(0), control.at(1), control.at(2)};
-    if (ranges.size() != bearings.size())
-      throw InputError("Filter.step", 0, "bearings", "needs as many bearings as ranges");
+    if (control.size() != 3) throw InputError(kSource, 0, "control", "needs three values");
+    for (int j = 0; j < 3; ++j) {
+      check_within(control.at(j), -lim::kMaxControl, lim::kMaxControl, fmt::format("control[{}]", j), kSource);
+      s.control[j] = control.at(j);
+    }
+    if (ranges.size() != bearings.size()) throw InputError(kSource, 0, "bearings", "needs as many bearings as ranges");
+    if (ranges.size() > lim::kMaxMeasurementsPerScan)
+      throw InputError(kSource, 0, "ranges", fmt::format("more than {} measurements in one scan", lim::kMaxMeasurementsPerScan));
     for (py::ssize_t i = 0; i < ranges.size(); ++i) {
       Measurement m;
+      check_within(ranges.at(i), 0.0, lim::kMaxRange, fmt::format("ranges[{}]", i), kSource);
       m.range_m = ranges.at(i);
-      m.bearing_rad = bearings.at(i);
-      if (!(m.range_m >= 0.0 && m.range_m <= scenario_limits::kMaxRange) || !std::isfinite(m.bearing_rad))
-        throw InputError("Filter.step", 0, fmt::format("ranges[{}]", i), "a range must be in [0, 1e6] and a bearing finite");
+      m.bearing_rad = checked_bearing(bearings.at(i), fmt::format("bearings[{}]", i), kSource);
       s.measurements.push_back(m);
     }
     s.has_scan = scan || !s.measurements.empty();
     if (!truth_pose.is_none()) {
       const auto p = truth_pose.cast<std::vector<double>>();
-      s.truth_pose = Pose2{p.at(0), p.at(1), p.at(2)};
+      if (p.size() != 3) throw InputError(kSource, 0, "truth_pose", "needs three values (x, y, heading)");
+      for (int j = 0; j < 2; ++j)
+        check_within(p[j], -lim::kMaxCoordinate, lim::kMaxCoordinate, fmt::format("truth_pose[{}]", j), kSource);
+      check_within(p[2], -lim::kMaxControl, lim::kMaxControl, "truth_pose[2]", kSource);
+      s.truth_pose = Pose2{p[0], p[1], wrap_angle(p[2])};
     }
     if (time_s < last_time_s_) throw InputError("Filter.step", 0, "time", "times must not go backwards");
     last_time_s_ = time_s;

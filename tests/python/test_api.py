@@ -160,3 +160,47 @@ def test_smooth_and_sweep_run_the_program_of_the_same_build(scenario, tmp_path):
     mine = arbor.run(tmp_path / "sweep" / row["scenario"], filter="fastslam2", map="trie", assoc="nn",
                      particles=5, seed=2)
     assert float(row["ate_rmse_m"]) == pytest.approx(mine.ate_rmse_m, rel=1e-12)
+
+
+def test_the_step_interface_refuses_what_a_scenario_file_would(scenario):
+    """Filter.step reads its arguments with the scenario format's limits: NaN or 1e300 controls made every pose
+    and landmark NaN, and a NaN time let time go backwards afterwards."""
+    f = arbor.Filter(scenario, **RUN)
+    u, r, b = np.zeros(3), np.array([5.0]), np.array([0.1])
+    cases = [
+        (dict(time=1.0, control=[np.nan, 0, 0], ranges=r, bearings=b), "control[0]"),
+        (dict(time=1.0, control=[0, 1e300, 0], ranges=r, bearings=b), "control[1]"),
+        (dict(time=np.nan, control=u, ranges=r, bearings=b), "time"),
+        (dict(time=1.0, control=u, ranges=np.full(20000, 5.0), bearings=np.zeros(20000)), "ranges"),
+        (dict(time=1.0, control=u, ranges=r, bearings=np.array([1e300])), "bearings[0]"),
+        (dict(time=1.0, control=u, ranges=r, bearings=b, truth_pose=[np.inf, 0, 0]), "truth_pose[0]"),
+    ]
+    for kwargs, field in cases:
+        with pytest.raises(arbor.InputError) as error:
+            f.step(**kwargs)
+        assert error.value.field == field, kwargs
+    f.step(1.0, u, r, b)  # nothing refused changed the filter
+    assert np.isfinite(f.best_trajectory()).all()
+
+
+def test_from_arrays_refuses_ids_that_are_not_ids(scenario):
+    """NaN truth ids became -2147483648 and 1.5 became 1; duplicate landmark ids and bearings of 999 passed,
+    and only `save` refused the scenario afterwards."""
+    def with_measurement(key, value):
+        z = {k: v.copy() for k, v in scenario.measurements.items()}
+        z[key] = z[key].astype(float)
+        z[key][0] = value
+        return z
+
+    for key, value, field in [("truth_id", np.nan, "measurements['truth_id'][0]"),
+                              ("truth_id", 1.5, "measurements['truth_id'][0]"),
+                              ("bearing", 999.0, "measurements['bearing'][0]")]:
+        with pytest.raises(arbor.InputError) as error:
+            arbor.Scenario.from_arrays(scenario.times, scenario.controls, with_measurement(key, value), like=scenario)
+        assert error.value.field == field
+    landmarks = scenario.truth_landmarks.copy()
+    landmarks[1, 0] = landmarks[0, 0]
+    with pytest.raises(arbor.InputError) as error:
+        arbor.Scenario.from_arrays(scenario.times, scenario.controls, scenario.measurements, like=scenario,
+                                   truth_landmarks=landmarks)
+    assert error.value.field == "truth_landmarks[1, 0]"
