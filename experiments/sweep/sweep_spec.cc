@@ -302,7 +302,13 @@ std::string RunParams::key() const {
   }
   // Further run options, where the grid names any, follow as __name-value_name-value.
   std::string options;
-  for (const auto& [name, value] : run_options) options += fmt::format("{}{}-{}", options.empty() ? "__" : "_", name, sanitize(value));
+  // A value that sanitising changes gets a hash of itself: `m+1.csv` and `m 1.csv` both sanitise to m_1.csv,
+  // and one key for two runs made the grid one run short.
+  const auto option_text = [](const std::string& value) {
+    const std::string safe = sanitize(value);
+    return safe == value ? safe : fmt::format("{}-{}", safe, stable_hash(value).substr(0, 8));
+  };
+  for (const auto& [name, value] : run_options) options += fmt::format("{}{}-{}", options.empty() ? "__" : "_", name, option_text(value));
   if (filter == "smoother") return fmt::format("{}__smoother-s{}-t{}{}", scenario, seed, threads, options);
   return fmt::format("{}__{}-{}-{}-m{}-s{}-t{}{}", scenario, filter, map, assoc, particles, seed, threads, options);
 }

@@ -179,6 +179,20 @@ TEST(SweepSpec, AnyRunOptionIsAGridDimensionCheckedAndPassedToTheChild) {
   EXPECT_EQ(plain.runs.front().key().find("__", plain.runs.front().key().find("__") + 2), std::string::npos);
 }
 
+// Values that sanitise alike (`m+1.csv` and `m 1.csv` are both m_1.csv in a file name) keep distinct keys: one
+// key for two runs made the grid a run short, and the second run's row overwrote the first's.
+TEST(SweepSpec, RunOptionValuesThatSanitiseAlikeKeepDistinctKeys) {
+  ScratchDir dir("spec");
+  write_text(dir / "m+1.csv", "");
+  write_text(dir / "m 1.csv", "");
+  const std::string text = kGoodSpec + std::string("prior-map = [\"") + (dir / "m+1.csv") + "\", \"" + (dir / "m 1.csv") + "\"]\n";
+  const SweepSpec spec = spec_from(dir, text);
+  std::set<std::string> keys;
+  for (const RunParams& r : spec.runs) keys.insert(r.key());
+  EXPECT_EQ(keys.size(), spec.runs.size());
+  EXPECT_EQ(spec.runs.size(), 2u * spec_from(dir, kGoodSpec).runs.size());
+}
+
 TEST(SweepSpec, ABadRunOptionValueNamesItsLineAndFieldWithTheRunCommandsMessage) {
   ScratchDir dir("spec");
   std::string text = kGoodSpec;
