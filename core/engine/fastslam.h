@@ -302,42 +302,20 @@ class FastSlam {
   // at scales move_scale, move_scale / 2, move_scale / 4, ... in turn.
   void move_all() {
     std::vector<int> accepted(particles_.size(), 0);
+    const auto log_target = [&](const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
+                                std::vector<std::vector<LandmarkEstimate>>* before) {
+      return move_log_target(w, poses, after, before);
+    };
     arena_.execute([&] {
-      tbb::parallel_for(0, static_cast<int>(particles_.size()), [&](int i) { accepted[i] = move_particle(particles_[i], i); });
+      tbb::parallel_for(0, static_cast<int>(particles_.size()), [&](int i) {
+        RandomStream rng(options_.seed, step_index_, i, RandomPurpose::kMove);
+        accepted[i] = move_particle(particles_[i], log_target, options_.move_steps, options_.move_scale, rng);
+      });
     });
     for (std::size_t i = 0; i < particles_.size(); ++i) {
       stats_.moves_accepted += accepted[i];
       stats_.moves_proposed += particles_[i].move.scans.empty() ? 0 : options_.move_steps;
     }
-  }
-
-  // Returns the number of accepted proposals.
-  int move_particle(ParticleState& p, int index) const {
-    const MoveWindow& w = p.move;
-    if (w.scans.empty()) return 0;
-    std::vector<Pose2> poses;
-    for (const auto& scan : w.scans) poses.push_back(scan->pose);
-    std::vector<LandmarkEstimate> after, after_proposed;
-    std::vector<std::vector<LandmarkEstimate>> before, before_proposed;
-    double log_target = move_log_target(w, poses, &after, &before);
-    RandomStream rng(options_.seed, step_index_, index, RandomPurpose::kMove);
-    int accepted = 0;
-    double scale = options_.move_scale;
-    for (int step = 0; step < options_.move_steps; ++step, scale *= 0.5) {
-      const std::size_t k = pick_scan(w, rng.uniform());
-      const Vec3 noise = draw_vec3([&] { return rng.normal(); });
-      const double u = rng.uniform();
-      std::vector<Pose2> proposed = propose_path(w, poses, k, scale, noise);
-      const double proposed_target = move_log_target(w, proposed, &after_proposed, &before_proposed);
-      if (!(std::log(u) < proposed_target - log_target)) continue;
-      poses.swap(proposed);
-      after.swap(after_proposed);
-      before.swap(before_proposed);
-      log_target = proposed_target;
-      ++accepted;
-    }
-    if (accepted > 0) apply_move(p, poses, after, before);
-    return accepted;
   }
 
   // The window's log target along poses, replaying its landmark updates as update_landmarks and
@@ -353,50 +331,6 @@ class FastSlam {
       floor_covariance(&e->cov);
     };
     return window_log_target(w, poses, update, start, after, before);
-  }
-
-  // Writes an accepted path: the window's scans, the landmarks it touched (where the map still holds them),
-  // the pose history since the anchor and the prediction since the newest draw, carried along rigidly.
-  void apply_move(ParticleState& p, const std::vector<Pose2>& poses, const std::vector<LandmarkEstimate>& after,
-                  const std::vector<std::vector<LandmarkEstimate>>& before) const {
-    MoveWindow& w = p.move;
-    const std::size_t n = w.scans.size();
-    std::vector<Pose2> old(n);
-    for (std::size_t k = 0; k < n; ++k) old[k] = w.scans[k]->pose;
-    // The history, newest first: entries after draw k are carried with it; draw k's own entry becomes poses[k].
-    std::size_t count = w.history_entries_since_draw;
-    for (std::size_t k = n; k-- > 1;) count += 1 + w.scans[k]->history_entries_before;
-    count += 1;
-    std::vector<TimedPose> entries = p.history.newest_entries(count);
-    std::size_t e = 0;
-    const auto carry = [&](std::size_t k, int how_many) {
-      for (int j = 0; j < how_many; ++j, ++e) entries[e].pose = poses[k].compose(old[k].between(entries[e].pose));
-    };
-    carry(n - 1, w.history_entries_since_draw);
-    for (std::size_t k = n; k-- > 0;) {
-      entries[e++].pose = poses[k];
-      if (k > 0) carry(k - 1, w.scans[k]->history_entries_before);
-    }
-    p.history.drop_newest(count);
-    for (std::size_t j = count; j-- > 0;) p.history.push(entries[j]);
-    // The prediction since the newest draw, and its covariance turned with it.
-    p.pose = poses[n - 1].compose(old[n - 1].between(p.pose));
-    const Mat3 turn = in_frame_of(Pose2{0.0, 0.0, old[n - 1].theta - poses[n - 1].theta}, Mat3::Identity());
-    p.pose_covariance = turn * p.pose_covariance * turn.transpose();
-    for (std::size_t k = 0; k < n; ++k) {
-      auto scan = std::make_shared<MoveScan>(*w.scans[k]);
-      scan->pose = poses[k];
-      scan->before = before[k];
-      w.scans[k] = std::move(scan);
-    }
-    for (const LandmarkEstimate& est : after) {
-      const Landmark* lm = p.map.find(est.id);
-      if (!lm) continue;  // removed since by negative evidence
-      Landmark moved = *lm;
-      moved.mean = est.mean;
-      moved.cov = est.cov;
-      p.map.set(moved);
-    }
   }
 
   // How far beyond the sensor's view a pose drawn from N(pose, P) could see: three standard deviations of

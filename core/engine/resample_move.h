@@ -13,12 +13,14 @@
 #ifndef ARBOR_CORE_ENGINE_RESAMPLE_MOVE_H_
 #define ARBOR_CORE_ENGINE_RESAMPLE_MOVE_H_
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "core/engine/rng.h"
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
 #include "core/types/landmark.h"
@@ -154,6 +156,82 @@ inline std::size_t pick_scan(const MoveWindow& w, double u) {
     if (u < acc) return k;
   }
   return n - 1;
+}
+
+// Writes an accepted path into particle p (the engine's Particle: move, history, pose, pose_covariance, map):
+// the window's scans, the landmarks it touched (where the map still holds them), the pose history since the
+// anchor and the prediction since the newest draw, carried along rigidly.
+template <class Particle>
+void apply_move(Particle& p, const std::vector<Pose2>& poses, const std::vector<LandmarkEstimate>& after,
+                const std::vector<std::vector<LandmarkEstimate>>& before) {
+  MoveWindow& w = p.move;
+  const std::size_t n = w.scans.size();
+  std::vector<Pose2> old(n);
+  for (std::size_t k = 0; k < n; ++k) old[k] = w.scans[k]->pose;
+  // The history, newest first: entries after draw k are carried with it; draw k's own entry becomes poses[k].
+  std::size_t count = w.history_entries_since_draw;
+  for (std::size_t k = n; k-- > 1;) count += 1 + w.scans[k]->history_entries_before;
+  count += 1;
+  auto entries = p.history.newest_entries(count);
+  std::size_t e = 0;
+  const auto carry = [&](std::size_t k, int how_many) {
+    for (int j = 0; j < how_many; ++j, ++e) entries[e].pose = poses[k].compose(old[k].between(entries[e].pose));
+  };
+  carry(n - 1, w.history_entries_since_draw);
+  for (std::size_t k = n; k-- > 0;) {
+    entries[e++].pose = poses[k];
+    if (k > 0) carry(k - 1, w.scans[k]->history_entries_before);
+  }
+  p.history.drop_newest(count);
+  for (std::size_t j = count; j-- > 0;) p.history.push(entries[j]);
+  // The prediction since the newest draw, and its covariance turned with it.
+  p.pose = poses[n - 1].compose(old[n - 1].between(p.pose));
+  const Mat3 turn = in_frame_of(Pose2{0.0, 0.0, old[n - 1].theta - poses[n - 1].theta}, Mat3::Identity());
+  p.pose_covariance = turn * p.pose_covariance * turn.transpose();
+  for (std::size_t k = 0; k < n; ++k) {
+    auto scan = std::make_shared<MoveScan>(*w.scans[k]);
+    scan->pose = poses[k];
+    scan->before = before[k];
+    w.scans[k] = std::move(scan);
+  }
+  for (const LandmarkEstimate& est : after) {
+    const Landmark* lm = p.map.find(est.id);
+    if (!lm) continue;  // removed since by negative evidence
+    Landmark moved = *lm;
+    moved.mean = est.mean;
+    moved.cov = est.cov;
+    p.map.set(moved);
+  }
+}
+
+// One particle's moves after a resampling: `steps` proposals at scales scale, scale / 2, ..., each accepted
+// with probability min(1, target ratio). log_target(window, poses, &after, &before) is window_log_target with
+// the engine's landmark update. Returns the number accepted; the particle changes only if one was.
+template <class Particle, class LogTarget>
+int move_particle(Particle& p, const LogTarget& log_target, int steps, double scale, RandomStream& rng) {
+  const MoveWindow& w = p.move;
+  if (w.scans.empty()) return 0;
+  std::vector<Pose2> poses;
+  for (const auto& scan : w.scans) poses.push_back(scan->pose);
+  std::vector<LandmarkEstimate> after, after_proposed;
+  std::vector<std::vector<LandmarkEstimate>> before, before_proposed;
+  double current = log_target(w, poses, &after, &before);
+  int accepted = 0;
+  for (int step = 0; step < steps; ++step, scale *= 0.5) {
+    const std::size_t k = pick_scan(w, rng.uniform());
+    const Vec3 noise = draw_vec3([&] { return rng.normal(); });
+    const double u = rng.uniform();
+    std::vector<Pose2> proposed = propose_path(w, poses, k, scale, noise);
+    const double proposed_target = log_target(w, proposed, &after_proposed, &before_proposed);
+    if (!(std::log(u) < proposed_target - current)) continue;
+    poses.swap(proposed);
+    after.swap(after_proposed);
+    before.swap(before_proposed);
+    current = proposed_target;
+    ++accepted;
+  }
+  if (accepted > 0) apply_move(p, poses, after, before);
+  return accepted;
 }
 
 }  // namespace arbor
