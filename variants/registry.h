@@ -14,7 +14,7 @@
 #include "variants/maps/hamt_map.h"
 #include "variants/maps/persistent_tree_map.h"
 #include "variants/maps/vector_map.h"
-#include "variants/type_list.h"
+#include "core/type_list.h"
 
 namespace arbor {
 

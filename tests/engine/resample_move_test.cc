@@ -12,7 +12,7 @@
 #include "core/engine/fastslam.h"
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
-#include "../experiments/test_support.h"
+#include "tests/engine/worlds.h"
 #include "variants/association/known_association.h"
 #include "variants/maps/vector_map.h"
 

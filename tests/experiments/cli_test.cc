@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "test_support.h"
+#include "tests/support/scratch.h"
 
 namespace arbor {
 namespace {

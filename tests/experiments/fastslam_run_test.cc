@@ -11,7 +11,7 @@
 #include "core/io/trajectory_io.h"
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
-#include "test_support.h"
+#include "tests/engine/worlds.h"
 
 namespace arbor {
 namespace {

@@ -14,7 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/experiments/test_support.h"
+#include "tests/support/scratch.h"
 
 namespace arbor {
 namespace {

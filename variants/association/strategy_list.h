@@ -13,7 +13,7 @@
 #include "variants/association/known_association.h"
 #include "variants/association/nearest_neighbor.h"
 #include "variants/association/tree_strategy.h"
-#include "variants/type_list.h"
+#include "core/type_list.h"
 
 namespace arbor {
 

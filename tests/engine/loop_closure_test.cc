@@ -10,7 +10,7 @@
 #include "core/engine/fastslam.h"
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
-#include "test_support.h"
+#include "tests/engine/worlds.h"
 #include "variants/association/jcbb.h"
 #include "variants/maps/vector_map.h"
 #include "variants/registry.h"

@@ -5,7 +5,7 @@
 
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
-#include "test_support.h"
+#include "tests/engine/worlds.h"
 #include "variants/registry.h"
 
 namespace arbor {

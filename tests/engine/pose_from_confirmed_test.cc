@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/engine/fastslam.h"
-#include "test_support.h"
+#include "tests/engine/worlds.h"
 #include "variants/association/jcbb.h"
 #include "variants/maps/vector_map.h"
 

@@ -1,14 +1,11 @@
-// Helpers shared by the experiment-level tests: simulated worlds, scratch directories, files, running the
-// arbor binary.
-#ifndef ARBOR_TESTS_EXPERIMENTS_TEST_SUPPORT_H_
-#define ARBOR_TESTS_EXPERIMENTS_TEST_SUPPORT_H_
+// The engine tests' small world helper: the default simulated world, a robot standing before a handful of
+// landmarks, a FastSLAM run's config, and the check that a run is the same to the last bit with every map back
+// end on 1 and 2 threads.
+#ifndef ARBOR_TESTS_ENGINE_WORLDS_H_
+#define ARBOR_TESTS_ENGINE_WORLDS_H_
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +13,7 @@
 
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
+#include "tests/support/scratch.h"
 #include "variants/registry.h"
 
 namespace arbor::testing {
@@ -62,27 +60,6 @@ inline RunConfig fastslam_config(FilterVersion version, int particles, std::uint
   return c;
 }
 
-// A fresh directory under the system temp dir, named after the test.
-inline std::string scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("arbor_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
-
-inline std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Path of the arbor executable of the build these tests belong to (ARBOR_BINARY_DIR overrides it).
-inline std::string arbor_binary() {
-  const char* dir = std::getenv("ARBOR_BINARY_DIR");
-  return std::string(dir ? dir : ARBOR_TEST_BINARY_DIR) + "/bin/arbor";
-}
-
 // Runs the scenario with every map back end on 1 and 2 threads, each run's config set by `configure`, and
 // expects the trajectory, the map and the F1 to be the same to the last bit in all of them; `check` is called
 // on every run's output (what a run must show for the comparison to mean something).
@@ -108,22 +85,6 @@ inline void expect_bit_identical_across_backends_and_threads(
   }
 }
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-inline CommandResult run_command(const std::string& command) {
-  CommandResult r;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof(buffer), pipe)) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
 }  // namespace arbor::testing
 
-#endif  // ARBOR_TESTS_EXPERIMENTS_TEST_SUPPORT_H_
+#endif  // ARBOR_TESTS_ENGINE_WORLDS_H_
