@@ -30,7 +30,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       const RunOutput out = run_fastslam(scenario, *config);
       const auto& r = out.result;
       const auto show = [](const nlohmann::json& v) { return v.is_null() ? std::string("n/a") : fmt::format("{:.4g}", v.get<double>()); };
-      fmt::print("{} {} map={} assoc={} particles={} seed={}\n", config->scenario_path, choices->filter, config->map,
+      fmt::print("{} {} map={} assoc={} particles={} seed={}\n", config->scenario_path, to_string(config->options.version), config->map,
                  config->assoc, config->options.particles, config->options.seed);
       fmt::print("  ATE RMSE {} m (weighted mean {} m, dead reckoning {} m{})\n", show(r["ate_rmse_m"]),
                  show(r["ate_mean_rmse_m"]), show(r["dead_reckoning_ate_m"]),

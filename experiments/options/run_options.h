@@ -1,14 +1,18 @@
-// The options of `arbor run` that shape a run, defined once. `arbor run` puts them on its command line; a
-// sweep spec may name any of them as a [grid] dimension, which the sweep checks against these same
-// definitions and hands to each child run as --name=value. A new run option is one add_option in
-// run_options.cc: `arbor run --help`, the sweep spec and the child's argv all follow from it.
+// The options of `arbor run` that shape a run, one descriptor each (run_options.cc). `arbor run` puts them on
+// its command line; a sweep spec may name any of them as a [grid] dimension, which the sweep checks against
+// these same definitions and hands to each child run as --name=value; arbor.run takes them as keywords; and
+// result.json's config records each under the same name. A new run option is one descriptor in
+// run_options.cc: --help, the sweep spec, the child's argv, the Python keyword and result.json follow from it.
 #ifndef ARBOR_EXPERIMENTS_OPTIONS_RUN_OPTIONS_H_
 #define ARBOR_EXPERIMENTS_OPTIONS_RUN_OPTIONS_H_
 
+#include <map>
 #include <string>
 #include <vector>
 
-#include "experiments/run/fastslam_run.h"
+#include <nlohmann/json.hpp>
+
+#include "experiments/options/run_config.h"
 
 // Declared, not included: CLI11 is a large header, and the sweep spec reader (and its fuzz target) needs only
 // the two functions at the end, not the command line.
@@ -18,12 +22,10 @@ class App;
 
 namespace arbor::cli {
 
-// The options read as names and turned into the engine's enums after parsing (apply_run_choices).
+// The named values (--filter, --likelihood, ...) as read, by option name, before apply_run_choices turns
+// them into the engine's enums.
 struct RunChoices {
-  std::string filter = "fastslam2";
-  std::string motion_sampling = "per-scan";
-  std::string likelihood = "gaussian";
-  std::string gate_covariance = "particle";
+  std::map<std::string, std::string> chosen;
 };
 
 // Adds every run option to cmd, bound to config and choices (--scenario and --out included, required).
@@ -31,6 +33,12 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices);
 
 // Turns the named choices into config's enums; throws InputError naming the option.
 void apply_run_choices(const RunChoices& choices, RunConfig& config);
+
+// result.json's "config": every run option but --out under its own name ('_' for '-'), as the run used it.
+nlohmann::json run_config_json(const RunConfig& config);
+
+// Every run option's name (without "--"), in --help's order.
+std::vector<std::string> run_option_names();
 
 // Parses `--name=value` arguments as `arbor run` parses its command line (the same names, defaults and
 // checks; --scenario and --out may be left out) and applies the choices. The Python API's arbor.run and

@@ -5,13 +5,13 @@
 #include <filesystem>
 
 #include <fmt/core.h>
-#include <tbb/info.h>
 
 #include "core/io/atomic_file.h"
 #include "core/io/trajectory_io.h"
 #include "core/metrics/decision_score.h"
 #include "core/metrics/run_statistics.h"
 #include "core/metrics/trajectory_metrics.h"
+#include "experiments/options/run_options.h"
 #include "experiments/run/progress.h"
 #include "experiments/run/result_fields.h"
 #include "variants/registry.h"
@@ -58,7 +58,6 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   prepare_run_directory(config.out_dir);
   std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
   if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
-  const int threads = config.options.threads > 0 ? config.options.threads : tbb::info::default_concurrency();
 
   RunOutput out;
   std::vector<double> step_times;
@@ -116,39 +115,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const std::size_t particles = static_cast<std::size_t>(config.options.particles);
 
   Json& r = out.result;
-  r["config"] = {{"scenario", config.scenario_path},
-                 {"prior_map", config.prior_map_path.empty() ? Json(nullptr) : Json(config.prior_map_path)},
-                 {"filter", std::string(to_string(config.options.version))},
-                 {"map", config.map},
-                 {"assoc", config.assoc},
-                 {"particles", config.options.particles},
-                 {"seed", config.options.seed},
-                 {"threads", threads},
-                 {"resample_threshold", config.options.resample_threshold},
-                 {"gate_probability", config.options.association.gate_probability},
-                 {"new_landmark_probability", config.options.association.new_landmark_probability},
-                 {"max_hypotheses", config.options.association.max_hypotheses},
-                 {"max_work", config.options.association.max_work},
-                 {"log_odds_prune", config.options.log_odds_prune},
-                 {"log_odds_confirm", config.options.log_odds_confirm},
-                 {"provisional_scans", config.options.provisional_scans},
-                 {"pose_from_confirmed", config.options.pose_from_confirmed},
-                 {"provisional_steer_min", config.options.provisional_steer_min},
-                 {"relocalize", config.options.relocalize},
-                 {"relocalize_min_pairings", config.options.relocalize_min_pairings},
-                 {"relocalize_accept", config.options.association.accept_explained},
-                 {"close_loops", config.options.close_loops},
-                 {"dormant_scans", config.options.dormant_scans},
-                 {"loop_drift_m", config.options.loop_drift_m},
-                 {"motion_sampling", std::string(to_string(config.options.motion_sampling))},
-                 {"likelihood", std::string(to_string(config.options.likelihood))},
-                 {"student_dof", config.options.student_dof},
-                 {"known_gate_probability", config.options.association.known_gate_probability},
-                 {"gate_covariance", std::string(to_string(config.options.gate_covariance))},
-                 {"roughen", config.options.roughen},
-                 {"move_window", config.options.move_window},
-                 {"move_steps", config.options.move_steps},
-                 {"move_scale", config.options.move_scale}};
+  r["config"] = cli::run_config_json(config);  // every run option, under the name the command line gives it
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
   r.update(accuracy_fields(scenario, truth, best, map));

@@ -16,20 +16,9 @@
 #include "core/types/scenario.h"
 #include "core/types/step_decisions.h"
 #include "core/types/timed_pose.h"
+#include "experiments/options/run_config.h"
 
 namespace arbor {
-
-struct RunConfig {
-  std::string scenario_path;  // recorded in the result; the scenario itself is passed in
-  std::string prior_map_path;  // empty: no prior map; else a map.csv every particle starts from
-  std::string map = "naive";
-  std::string assoc = "known";
-  FastSlamOptions options;
-  std::string out_dir;        // empty: compute the metrics but write no files
-  bool progress = false;      // a progress line on stderr
-  // Called after every step; it may throw to end the run there (the Python API checks for Ctrl-C here).
-  std::function<void()> after_step;
-};
 
 // One row of steps.csv.
 struct StepRecord {

@@ -28,6 +28,7 @@
 #include "experiments/sweep/child_process.h"
 #include "experiments/sweep/results_log.h"
 #include "experiments/sweep/sweep_manifest.h"
+#include "variants/filter_list.h"
 
 namespace arbor {
 namespace {
@@ -209,10 +210,14 @@ std::vector<RunParams> shard_runs(const std::vector<RunParams>& grid, int index,
 std::vector<std::string> run_command(const RunParams& run, const std::string& exe, const std::string& out_dir) {
   const std::string scenario = run.dataset.empty() ? out_dir + "/scenarios/" + run.scenario_name() + ".scn" : run.dataset_path;
   const std::string dir = out_dir + "/runs/" + run.key();
-  if (run.filter == "smoother") return {exe, "smooth", "--scenario", scenario, "--associations", "known", "--out", dir};
-  std::vector<std::string> argv{exe, "run", "--scenario", scenario, "--filter", run.filter, "--map", run.map,
-                                "--assoc", run.assoc, "--particles", fmt::format("{}", run.particles), "--seed",
-                                fmt::format("{}", run.seed), "--threads", fmt::format("{}", run.threads), "--out", dir};
+  const FilterEntry& filter = *find_filter(run.filter);  // the spec reader checked the name
+  if (filter.traits.is_batch)
+    return {exe, std::string(filter.command), "--scenario", scenario, "--associations", "known", "--out", dir};
+  std::vector<std::string> argv{exe, std::string(filter.command), "--scenario", scenario, "--filter", run.filter};
+  if (filter.traits.has_map_backends) argv.insert(argv.end(), {"--map", run.map});
+  if (filter.traits.chooses_association) argv.insert(argv.end(), {"--assoc", run.assoc});
+  if (filter.traits.has_particles) argv.insert(argv.end(), {"--particles", fmt::format("{}", run.particles)});
+  argv.insert(argv.end(), {"--seed", fmt::format("{}", run.seed), "--threads", fmt::format("{}", run.threads), "--out", dir});
   for (const auto& [name, value] : run.run_options) argv.push_back(fmt::format("--{}={}", name, value));
   return argv;
 }

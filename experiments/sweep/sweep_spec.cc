@@ -12,8 +12,10 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "core/check.h"
 #include "core/io/input_error.h"
 #include "experiments/options/run_options.h"
+#include "variants/filter_list.h"
 #include "variants/registry.h"
 
 namespace arbor {
@@ -221,10 +223,17 @@ auto tie(const RunParams& p) {
                   p.assoc, p.particles, p.seed, p.threads, p.run_options);
 }
 
+// The traits of a filter the spec reader has already checked against the list.
+const FilterTraits& traits_of(std::string_view filter) {
+  const FilterEntry* entry = find_filter(filter);
+  ARBOR_CHECK(entry, "'{}' is not in variants/filter_list.h", filter);
+  return entry->traits;
+}
+
 }  // namespace
 
 const std::vector<std::string>& known_filters() {
-  static const std::vector<std::string> names{"fastslam1", "fastslam2", "smoother"};
+  static const std::vector<std::string> names = filter_names();
   return names;
 }
 // Map back ends and strategies come from the registry, so a spec is checked against what this build can run.
@@ -309,8 +318,13 @@ std::string RunParams::key() const {
     return safe == value ? safe : fmt::format("{}-{}", safe, stable_hash(value).substr(0, 8));
   };
   for (const auto& [name, value] : run_options) options += fmt::format("{}{}-{}", options.empty() ? "__" : "_", name, option_text(value));
-  if (filter == "smoother") return fmt::format("{}__smoother-s{}-t{}{}", scenario, seed, threads, options);
-  return fmt::format("{}__{}-{}-{}-m{}-s{}-t{}{}", scenario, filter, map, assoc, particles, seed, threads, options);
+  // The key names only the dimensions the filter has (fastslam2-tree-jcbb-m100, smoother).
+  const FilterTraits traits = traits_of(filter);
+  std::string method = filter;
+  if (traits.has_map_backends) method += "-" + map;
+  if (traits.chooses_association) method += "-" + assoc;
+  if (traits.has_particles) method += fmt::format("-m{}", particles);
+  return fmt::format("{}__{}-s{}-t{}{}", scenario, method, seed, threads, options);
 }
 
 bool operator<(const RunParams& a, const RunParams& b) { return tie(a) < tie(b); }
@@ -424,15 +438,16 @@ SweepSpec read_sweep_spec(const std::string& path) {
     return *m;
   };
   const auto filters = in.names(need("filter"), "grid.filter", known_filters());
-  const bool fastslam = std::any_of(filters.begin(), filters.end(), [](const auto& f) { return f != "smoother"; });
-  const bool smoother = std::find(filters.begin(), filters.end(), "smoother") != filters.end();
-  std::vector<std::string> maps{""}, assocs{"known"};
-  std::vector<std::int64_t> particles{0};
-  if (fastslam) {
-    maps = in.names(need("map"), "grid.map", known_maps());
-    assocs = in.names(need("assoc"), "grid.assoc", known_assocs());
-    particles = in.integers(need("particles"), "grid.particles", 1, 10'000'000);
-  }
+  // A dimension is asked for when some filter of the grid has it; a filter without it runs once per scenario
+  // and seed whatever its values (the smoother: no map, no choice of association, no particles).
+  const auto any = [&](bool FilterTraits::*trait) {
+    return std::any_of(filters.begin(), filters.end(), [&](const auto& f) { return traits_of(f).*trait; });
+  };
+  std::vector<std::string> maps, assocs;
+  std::vector<std::int64_t> particles;
+  if (any(&FilterTraits::has_map_backends)) maps = in.names(need("map"), "grid.map", known_maps());
+  if (any(&FilterTraits::chooses_association)) assocs = in.names(need("assoc"), "grid.assoc", known_assocs());
+  if (any(&FilterTraits::has_particles)) particles = in.integers(need("particles"), "grid.particles", 1, 10'000'000);
   const auto seeds = in.integers(need("seed"), "grid.seed", 0, INT64_C(1) << 53);
   std::vector<std::int64_t> threads{1};
   if (const auto* n = grid->get("threads")) threads = in.integers(*n, "grid.threads", 1, 1024);
@@ -461,11 +476,12 @@ SweepSpec read_sweep_spec(const std::string& path) {
 
   std::set<std::string> seen;
   const auto add = [&](RunParams p) {
-    // The smoother takes none of the filter's options: one run, whatever they are.
-    const std::size_t sets = p.filter == "smoother" ? 1 : option_sets.size();
+    // A batch filter takes none of `arbor run`'s options: one run, whatever they are.
+    const bool batch = traits_of(p.filter).is_batch;
+    const std::size_t sets = batch ? 1 : option_sets.size();
     for (std::size_t i = 0; i < sets; ++i) {
       if (static_cast<std::int64_t>(spec.runs.size()) >= kMaxGridSize) in.fail(line_of(*grid), "grid", "more than a million runs");
-      p.run_options = p.filter == "smoother" ? std::vector<std::pair<std::string, std::string>>{} : option_sets[i];
+      p.run_options = batch ? std::vector<std::pair<std::string, std::string>>{} : option_sets[i];
       if (seen.insert(p.key()).second) spec.runs.push_back(p);
     }
   };
@@ -477,14 +493,10 @@ SweepSpec read_sweep_spec(const std::string& path) {
           p.filter = f;
           p.seed = seed;
           p.threads = t;
-          if (f == "smoother") {  // the smoother has no map, association or particles: one run per scenario
-            p.assoc = "known";
-            add(p);
-            continue;
-          }
-          for (const auto& m : maps)
-            for (const auto& a : assocs)
-              for (const auto n : particles) {
+          const FilterTraits& traits = traits_of(f);
+          for (const auto& m : traits.has_map_backends ? maps : std::vector<std::string>{""})
+            for (const auto& a : traits.chooses_association ? assocs : std::vector<std::string>{"known"})
+              for (const auto n : traits.has_particles ? particles : std::vector<std::int64_t>{0}) {
                 p.map = m;
                 p.assoc = a;
                 p.particles = n;
@@ -493,7 +505,7 @@ SweepSpec read_sweep_spec(const std::string& path) {
         }
   std::sort(spec.runs.begin(), spec.runs.end());
 
-  if (!explicit_metrics) spec.metrics = default_metrics(smoother);
+  if (!explicit_metrics) spec.metrics = default_metrics(any(&FilterTraits::is_batch));
   // The hash covers what makes rows comparable: the grid and the columns. Comments, spacing and the order
   // of list entries do not change it.
   std::string canonical = "arbor-sweep 1\n";

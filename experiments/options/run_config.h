@@ -1,0 +1,27 @@
+// What one `arbor run` is asked to do: the scenario, the variants, the engine's options and where the files go.
+// It sits with the options that fill it (run_options.h) so that the run, which records them, builds on them.
+#ifndef ARBOR_EXPERIMENTS_OPTIONS_RUN_CONFIG_H_
+#define ARBOR_EXPERIMENTS_OPTIONS_RUN_CONFIG_H_
+
+#include <functional>
+#include <string>
+
+#include "core/engine/fastslam_options.h"
+
+namespace arbor {
+
+struct RunConfig {
+  std::string scenario_path;  // recorded in the result; the scenario itself is passed in
+  std::string prior_map_path;  // empty: no prior map; else a map.csv every particle starts from
+  std::string map = "naive";
+  std::string assoc = "known";
+  FastSlamOptions options;
+  std::string out_dir;        // empty: compute the metrics but write no files
+  bool progress = false;      // a progress line on stderr
+  // Called after every step; it may throw to end the run there (the Python API checks for Ctrl-C here).
+  std::function<void()> after_step;
+};
+
+}  // namespace arbor
+
+#endif  // ARBOR_EXPERIMENTS_OPTIONS_RUN_CONFIG_H_

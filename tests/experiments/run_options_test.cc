@@ -1,0 +1,72 @@
+// The run options' descriptors: every option reaches result.json's config under its own name, and only there.
+#include "experiments/options/run_options.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace arbor::cli {
+namespace {
+
+std::string json_key(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+TEST(RunOptions, ResultConfigHoldsEveryOptionButOutUnderItsOwnName) {
+  const nlohmann::json config = run_config_json(run_config_from_arguments({}));
+  std::vector<std::string> expected;
+  for (const std::string& name : run_option_names())
+    if (name != "out") expected.push_back(json_key(name));
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : config.items()) keys.push_back(key);
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(keys, expected);
+  EXPECT_GE(keys.size(), 30u);  // the list is read, not empty
+}
+
+// For every option, some value `arbor run` accepts changes exactly that option's key in the config: a
+// descriptor that records another field, or none, fails here.
+TEST(RunOptions, EachOptionsValueReachesItsOwnKeyAndNoOther) {
+  const nlohmann::json defaults = run_config_json(run_config_from_arguments({}));
+  const std::vector<std::string> candidates{"0.25",      "0.5",  "3",    "7",           "-3",        "true", "x.scn",
+                                            "fastslam1", "tree", "jcbb", "per-control", "student-t", "set"};
+  for (const std::string& name : run_option_names()) {
+    if (name == "out" || name == "prior-map") continue;  // --out is not recorded; --prior-map needs a file
+    bool changed_alone = false;
+    for (const std::string& value : candidates) {
+      if (!run_option_error(name, value).empty()) continue;
+      const nlohmann::json config = run_config_json(run_config_from_arguments({"--" + name + "=" + value}));
+      std::vector<std::string> differing;
+      for (const auto& [key, v] : config.items())
+        if (defaults[key] != v) differing.push_back(key);
+      if (differing.empty()) continue;  // the candidate was the default
+      EXPECT_EQ(differing, std::vector<std::string>{json_key(name)}) << "--" << name << "=" << value;
+      changed_alone = true;
+      break;
+    }
+    EXPECT_TRUE(changed_alone) << "no candidate value of --" << name << " changed result.json's config";
+  }
+}
+
+TEST(RunOptions, ThePrecisionGatesKeepTheirCommandLineNames) {
+  const nlohmann::json config = run_config_json(run_config_from_arguments(
+      {"--chi2=0.9", "--known-gate=0.5", "--new-landmark-gate=0.95", "--prune=-4", "--confirm=2.5"}));
+  EXPECT_EQ(config["chi2"], 0.9);
+  EXPECT_EQ(config["known_gate"], 0.5);
+  EXPECT_EQ(config["new_landmark_gate"], 0.95);
+  EXPECT_EQ(config["prune"], -4.0);
+  EXPECT_EQ(config["confirm"], 2.5);
+}
+
+TEST(RunOptions, TheSweepVariesEveryOptionItDoesNotSetItself) {
+  const std::vector<std::string>& sweepable = sweepable_run_options();
+  for (const char* own : {"scenario", "out", "filter", "map", "assoc", "particles", "seed", "threads"})
+    EXPECT_EQ(std::count(sweepable.begin(), sweepable.end(), own), 0) << own;
+  EXPECT_EQ(sweepable.size() + 8, run_option_names().size());
+}
+
+}  // namespace
+}  // namespace arbor::cli
