@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The report as one self-contained HTML file (report.html beside report.md): figures embedded as data URIs,
 tables sortable by a click on their header with a few lines of inline script, no network and nothing but the
 standard library. It renders the subset of Markdown the report's sections use: headings, paragraphs, bullet

@@ -7,7 +7,7 @@ the reference on the same data, averaged over runs: the smoother with true assoc
 has it (simulation, UTIAS), else the smoother given that very run's decisions (Victoria Park). The DESIGN.md
 §10 target is <= 1.3 with true association.
 
-Usage: /usr/bin/python3 analysis/smoother_vs_fastslam.py OUT
+Usage: /usr/bin/python3 analysis/studies/smoother_vs_fastslam.py OUT
 Writes OUT/smoother_vs_fastslam.csv (one row per run), OUT/smoother_vs_fastslam.md and .png.
 """
 import glob

@@ -8,7 +8,7 @@ the runs without a kidnap (there they can only be loop closures or mistakes). Ea
 its step is below the error at the step before, and as further otherwise: a loop closure or a recovery moves
 the robot towards the truth, a mistake away from it.
 
-Usage: /usr/bin/python3 analysis/kidnap.py OUT   (writes OUT/kidnap.csv and OUT/kidnap.md)
+Usage: /usr/bin/python3 analysis/studies/kidnap.py OUT   (writes OUT/kidnap.csv and OUT/kidnap.md)
 """
 import csv
 import json
@@ -18,8 +18,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import read_scenario_truth, read_tum  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis.results import read_scenario_truth, read_tum  # noqa: E402
 
 RECOVERED_M = 1.0   # position error under which the robot counts as found again, or
 BASELINE_FACTOR = 2.0  # this factor times its median error over the BASELINE_SCANS scans before the kidnap

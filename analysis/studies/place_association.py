@@ -5,16 +5,18 @@ place. MRCLAM's 15 landmarks stand in clusters of two or three 0.18-0.25 m apart
 noise (sigma 0.11-0.19 m), so a geometric strategy (JCBB, NN) cannot tell a cluster's members apart and its
 F1 against the barcodes counts those as false matches; the place count says what it got wrong otherwise.
 Pairings with landmarks the run later dropped are not in its map.csv and are left out.
-Usage: analysis/place_association.py RUN_DIR... [--radius 0.3]   (run directories of `arbor run`)"""
+Usage: analysis/studies/place_association.py RUN_DIR... [--radius 0.3]   (run directories of `arbor run`)"""
 
 import argparse
 import csv
 import json
 import os
+import sys
 
 import numpy as np
 
-import arbor_results as ar
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis import results as ar  # noqa: E402
 
 
 def truth_positions(scenario_path):

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Shared loading and plotting helpers for the analysis scripts: the one place that knows the sweep's
 result files (results.jsonl / results.csv, runs/<key>/{result.json,trajectory.tum,map.csv}, scenarios)."""
 

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Accuracy on real datasets: one table per dataset with, per configuration (filter, association, map back
 end, particles, run options), the trajectory error against the dataset's reference (its GPS track or motion
 capture, as the scenario names it), dead reckoning's error on the same reference, landmark RMSE and
@@ -9,7 +8,7 @@ import json
 import os
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 # result.json fields a dataset table shows besides the results row's own columns.
 EXTRA = ["scenario_duration_s", "dead_reckoning_ate_m", "ate_aligned", "scenario"]

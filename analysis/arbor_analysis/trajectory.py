@@ -1,6 +1,5 @@
-#!/usr/bin/python3
 """Trajectory-and-map figure of one run: estimated trajectory (trajectory.tum) and map (map.csv) over the
-scenario's ground truth (poses, landmarks, GPS). Usage: trajectory.py RUN_DIR [--scenario FILE] [--out PNG].
+scenario's ground truth (poses, landmarks, GPS). Usage: PYTHONPATH=analysis /usr/bin/python3 -m arbor_analysis.trajectory RUN_DIR [--scenario FILE] [--out PNG].
 The scenario is taken from RUN_DIR/result.json (config.scenario) unless given."""
 
 import argparse
@@ -8,7 +7,7 @@ import json
 import os
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 
 def find_scenario(run_dir, sweep_dir=None):
