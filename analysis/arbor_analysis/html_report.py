@@ -50,7 +50,7 @@ document.querySelectorAll('table').forEach(function (table) {
 """
 
 
-# A backslash escape of Markdown (arbor_results.md_text writes them): the character as text.
+# A backslash escape of Markdown (results.md_text writes them): the character as text.
 ESCAPE = re.compile(r"\\([\\`*\[\]!|<>])")
 # The report embeds only the figures it drew: image files inside its own directory, of bounded size.
 FIGURE_KINDS = {".png": "png", ".svg": "svg+xml"}
@@ -118,7 +118,7 @@ def markdown_to_html(text, base_dir):
             i += 1
         elif fence_of(line):
             # Closed only by a line of backticks at least as long as the opening (CommonMark), so a spec whose
-            # text holds a fence of its own (arbor_results.code_block) cannot close it.
+            # text holds a fence of its own (results.code_block) cannot close it.
             fence = fence_of(line)
             j = i + 1
             while j < len(lines) and not (lines[j].strip().startswith(fence) and set(lines[j].strip()) == {"`"}):

@@ -240,7 +240,7 @@ def convert(source, out, **options):
 
 def sweep(spec, out, jobs=1, **options):
     """Runs a sweep spec (`arbor sweep SPEC --out OUT --jobs J`, resumable); returns results.csv as a list of
-    dicts (analysis/arbor_results.py reads it into pandas)."""
+    dicts (analysis/arbor_analysis/results.py reads it into pandas)."""
     cli("sweep", os.fspath(spec), "--out", os.fspath(out), "--jobs", jobs, *_arguments(options))
     with open(os.path.join(os.fspath(out), "results.csv"), newline="", encoding="utf-8") as f:
         return list(csv.DictReader(f))
