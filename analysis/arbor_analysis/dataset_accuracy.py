@@ -4,7 +4,6 @@ capture, as the scenario names it), dead reckoning's error on the same reference
 association F1 where the dataset has landmark ground truth or ids, and the run time against the data's own
 duration. Reads results.jsonl and each run's result.json (runs/<key>/result.json)."""
 
-import json
 import os
 import sys
 
@@ -21,10 +20,8 @@ def with_run_details(df, results_dir):
     fields = [k for k in EXTRA if k == "scenario" or k not in df]  # the rows' "scenario" is the file's path
     details = []
     for run_dir in df["run_dir"]:
-        path = os.path.join(results_dir, str(run_dir), "result.json")
         try:
-            with open(path, encoding="utf-8") as f:
-                result = json.load(f)
+            result = ar.read_result(os.path.join(results_dir, str(run_dir)))
         except (OSError, ValueError):
             result = {}
         details.append({("scenario_metadata" if k == "scenario" else k): result.get(k) for k in fields})

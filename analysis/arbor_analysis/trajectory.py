@@ -3,7 +3,6 @@ scenario's ground truth (poses, landmarks, GPS). Usage: PYTHONPATH=analysis /usr
 The scenario is taken from RUN_DIR/result.json (config.scenario) unless given."""
 
 import argparse
-import json
 import os
 import sys
 
@@ -14,8 +13,7 @@ def find_scenario(run_dir, sweep_dir=None):
     """The scenario file of a run: result.json's config.scenario, tried as written, relative to the run's
     sweep directory and relative to the run directory."""
     try:
-        with open(os.path.join(run_dir, "result.json"), encoding="utf-8") as f:
-            path = json.load(f).get("config", {}).get("scenario")
+        path = ar.read_result(run_dir).get("config", {}).get("scenario")
     except (OSError, ValueError):
         return None
     if not path:

@@ -6,7 +6,6 @@ scenario file the run used (truth poses, surveyed landmarks, GPS track; see docs
 Usage: analysis/studies/plot_real_run.py RUN_DIR --scenario FILE --out FIG.png [--title TEXT]
 """
 import argparse
-import json
 import os
 import sys
 
@@ -34,7 +33,7 @@ def main():
     gps = track[["t", "x", "y"]].to_numpy(dtype=float)
     est = ar.read_tum(f"{args.run_dir}/trajectory.tum")[["t", "x", "y"]].to_numpy(dtype=float)
     est_map = ar.read_map_csv(f"{args.run_dir}/map.csv")[["x", "y"]].to_numpy(dtype=float)
-    result = json.load(open(f"{args.run_dir}/result.json"))
+    result = ar.read_result(args.run_dir)
 
     fig, ax = plt.subplots(figsize=(7, 6))
     if len(gps):
