@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The kidnapped-robot study (experiments/scripts/kidnap_study.sh): per run, the scans from the kidnap until
 the best particle's position is first back within max(RECOVERED_M, BASELINE_FACTOR x its median error in the
 BASELINE_SCANS scans before the kidnap) of the truth (none: lost), and its error ten
