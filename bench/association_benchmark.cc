@@ -1,7 +1,7 @@
 // Association strategies on generated problems: time per call (median, p90), hypotheses, tests, F1 and the
 // fraction of jointly compatible answers, vs m, n and clutter, the locality tree vs the unrestricted one, and
 // the DESIGN.md §10 cases. Prints one CSV row per configuration (per-call distributions need a custom loop,
-// not Google Benchmark's per-iteration means); analysis/plot_association.py reads the CSV.
+// not Google Benchmark's per-iteration means); analysis/studies/plot_association.py reads the CSV.
 //   association_benchmark [--quick] [--group NAME] > results/association/<commit>_<host>_<compiler>/association.csv
 #include <algorithm>
 #include <chrono>

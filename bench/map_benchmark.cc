@@ -1,7 +1,7 @@
 // Map back end micro-benchmarks at N = 10^2..10^6 landmarks (ARBOR_BENCH_MAX_N=10000000: to 10^7): one set on a map shared with its parent, a
 // particle copy, a spatial query, the memory of M = 100 particles that each updated a few landmarks, and (at
 // 10^5) the memory a filter's lineage of such particles holds after 1000 steps.
-// Run: build/bench/map_benchmark --benchmark_out=FILE.json (see analysis/plot_map_complexity.py).
+// Run: build/bench/map_benchmark --benchmark_out=FILE.json (see analysis/studies/plot_map_complexity.py).
 #include <cstdint>
 #include <memory>
 #include <random>

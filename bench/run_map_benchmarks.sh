@@ -28,4 +28,4 @@ timed map_benchmark "$build/bench/map_benchmark" --benchmark_filter="$filter" --
 # shellcheck disable=SC2086
 timed step_benchmark "$build/bench/step_benchmark" --benchmark_filter="$filter" --benchmark_out="$out/step_benchmark.json" --benchmark_out_format=json $context
 echo "Map back ends: set/copy/query/particle memory (map_benchmark.json, median of ${reps}) and one FastSLAM step, M=100, 1 thread, process CPU time, mean (with resampling) and median of 100 steps after 20 warm-up steps (step_benchmark.json), N=1e2..${ARBOR_BENCH_MAX_N:-1000000} at 0.01 landmarks/m^2, back ends ${BACKENDS:-naive|tree|trie}; commit ${commit}, host ${host}, ${compiler}, $(nproc) cores; reproduce: REPS=${reps} ARBOR_BENCH_MAX_N=${ARBOR_BENCH_MAX_N:-1000000} BACKENDS='${BACKENDS:-naive|tree|trie}' bench/run_map_benchmarks.sh" > "$out/README"
-/usr/bin/python3 analysis/plot_map_complexity.py "$out" | tee "$out/slopes.txt"
+/usr/bin/python3 analysis/studies/plot_map_complexity.py "$out" | tee "$out/slopes.txt"

@@ -3,7 +3,7 @@
 # (or calibration-move|evaluation-move: the resample-move study, apart because it takes about 25 minutes)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
-# OUT/heldout.md with analysis/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
+# OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
 # chosen. Evaluation: robots 3-5 and simulated seeds 10000-10011, the figures the README quotes; about
 # 10 minutes on 2 cores. Re-running resumes (finished runs are skipped).
 set -euo pipefail
@@ -26,7 +26,7 @@ python=/usr/bin/python3  # Debian's, with numpy and pandas (the first python3 on
 for spec in experiments/heldout/${set_name}_*.toml; do
   name=$(basename "$spec" .toml)
   "$arbor" sweep "$spec" --out "$out/$name" --jobs 2
-  $python analysis/heldout.py "$out/$name" --out "$out/$name"
+  $python analysis/studies/heldout.py "$out/$name" --out "$out/$name"
 done
 [[ $set_name == *-move ]] && { echo "arbor: held-out $set_name set done: $out/*/heldout.md"; exit 0; }
 # The smoother without its robust loss on the same robots: the reference before issue 41 made Cauchy the

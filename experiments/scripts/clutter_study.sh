@@ -6,7 +6,7 @@
 # chi-square gate (--known-gate 1), the stronger reference where the noise has no outliers. Locality runs on
 # LOCALITY_SEEDS (default: every seed). A run whose result.json exists is skipped, so an interrupted study
 # resumes. Then:
-#   /usr/bin/python3 analysis/clutter.py OUT
+#   /usr/bin/python3 analysis/studies/clutter.py OUT
 # Usage: experiments/scripts/clutter_study.sh OUT [ARBOR_BINARY]
 # Scale with SEEDS, CLUTTER, WORLDS, LOCALITY_SEEDS, and FILTER_OFFSETS (default 0): each world is also run
 # with the filter seeds s + OFFSET. A ratio such as JCBB's ATE over known association's is a comparison of

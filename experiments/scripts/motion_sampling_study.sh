@@ -6,7 +6,7 @@
 # 1-5, known association, FastSLAM 2.0 and 1.0, beside the Ceres smoother (Cauchy loss); and Victoria Park
 # with JCBB (GPS RMSE and wall time, 100 and 1000 particles). A run whose
 # result.json exists is skipped, so an interrupted study resumes. Then:
-#   /usr/bin/python3 analysis/motion_sampling.py OUT
+#   /usr/bin/python3 analysis/studies/motion_sampling.py OUT
 # Usage: experiments/scripts/motion_sampling_study.sh OUT [ARBOR_BINARY]
 # Scale with SEEDS, KS, PARTICLES; UTIAS=DIR (default ../shared/datasets/utias_mrclam/MRCLAM_Dataset6; the
 # UTIAS part is skipped when DIR lacks robot 2).

@@ -4,7 +4,7 @@
 # true association, with the smoother given each FastSLAM run's own decisions ("how far is FastSLAM+JCBB
 # from the optimum given its associations?"). Writes OUT/<dataset>/<run>/result.json; a run whose
 # result.json exists is skipped, so an interrupted comparison resumes. Then:
-#   /usr/bin/python3 analysis/smoother_vs_fastslam.py OUT
+#   /usr/bin/python3 analysis/studies/smoother_vs_fastslam.py OUT
 # Usage: experiments/scripts/smoother_comparison.sh OUT [ARBOR_BINARY]
 # Scale with WORLDS (simulated world seeds), SEEDS (FastSLAM seeds on the real data), PARTICLES.
 set -euo pipefail

@@ -14,13 +14,14 @@ Ctrl-C ends them with KeyboardInterrupt. `smooth`, `associate`, `sweep` and `con
 of the same build (`arbor.executable()`) and read back its files.
 """
 
-import csv
 import json
 import os
 import subprocess
 import tempfile
 
 import numpy as np
+
+import arbor_files  # beside this package in build/python: the reader of the files below, shared with analysis/
 
 from ._arbor import InputError, Scenario, association_strategies, map_backends
 from . import _arbor
@@ -194,27 +195,6 @@ def _scenario_path(scenario, tmp):
     return os.fspath(scenario)
 
 
-def _read_tum(path):
-    """A TUM trajectory (t x y z qx qy qz qw) as N x 4: t, x, y and the planar heading 2 atan2(qz, qw)."""
-    rows = np.loadtxt(path, ndmin=2)
-    if rows.size == 0:
-        return np.zeros((0, 4))
-    return np.column_stack([rows[:, 0], rows[:, 1], rows[:, 2], 2.0 * np.arctan2(rows[:, 6], rows[:, 7])])
-
-
-def _read_map(path):
-    with open(path, newline="", encoding="utf-8") as f:
-        return {k: np.asarray(v) for k, v in _columns(csv.DictReader(f)).items()}
-
-
-def _columns(reader):
-    out = {}
-    for row in reader:
-        for k, v in row.items():
-            out.setdefault(k, []).append(float(v) if v not in ("", None) else np.nan)
-    return out
-
-
 def smooth(scenario, associations="known", out=None, **options):
     """The Ceres full-SLAM smoother (`arbor smooth`): associations "known", a Result's directory, or a run
     directory. Returns (result.json as a dict, trajectory N x 4, map dict of columns)."""
@@ -222,9 +202,8 @@ def smooth(scenario, associations="known", out=None, **options):
         out = os.fspath(out) if out else os.path.join(tmp, "smooth")
         cli("smooth", "--scenario", _scenario_path(scenario, tmp), "--associations", os.fspath(associations),
             "--out", out, *_arguments(options))
-        with open(os.path.join(out, "result.json"), encoding="utf-8") as f:
-            result = json.load(f)
-        return result, _read_tum(os.path.join(out, "trajectory.tum")), _read_map(os.path.join(out, "map.csv"))
+        return (arbor_files.read_result(out), arbor_files.read_tum(os.path.join(out, "trajectory.tum")),
+                arbor_files.read_map(os.path.join(out, "map.csv")))
 
 
 def associate(problem, assoc="jcbb", **options):
@@ -240,7 +219,6 @@ def convert(source, out, **options):
 
 def sweep(spec, out, jobs=1, **options):
     """Runs a sweep spec (`arbor sweep SPEC --out OUT --jobs J`, resumable); returns results.csv as a list of
-    dicts (analysis/arbor_results.py reads it into pandas)."""
+    dicts (analysis/arbor_analysis/results.py reads it into pandas)."""
     cli("sweep", os.fspath(spec), "--out", os.fspath(out), "--jobs", jobs, *_arguments(options))
-    with open(os.path.join(os.fspath(out), "results.csv"), newline="", encoding="utf-8") as f:
-        return list(csv.DictReader(f))
+    return arbor_files.read_rows(os.path.join(os.fspath(out), "results.csv"))

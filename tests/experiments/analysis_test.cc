@@ -18,6 +18,8 @@ using testing_util::ScratchDir;
 
 constexpr const char* kPython = "/usr/bin/python3";
 const std::string kSource = ARBOR_SOURCE_DIR;
+// A report section runs on its own as a module of the package analysis/arbor_analysis.
+const std::string kPythonPath = "PYTHONPATH=" + kSource + "/analysis";
 
 class AnalysisScripts : public ::testing::Test {
  protected:
@@ -29,7 +31,7 @@ class AnalysisScripts : public ::testing::Test {
                    << "python3-matplotlib): " << read_text(probe / "probe.log");
   }
   std::string fixture() const { return kSource + "/tests/data/results_fixture"; }
-  // One clutter_study.sh run: OUT/runs/NAME/result.json with the fields analysis/clutter.py reads.
+  // One clutter_study.sh run: OUT/runs/NAME/result.json with the fields analysis/studies/clutter.py reads.
   static void write_clutter_run(const ScratchDir& out, const std::string& name, double ate_aligned, int landmarks = 100,
                                 int spurious = 0, double wall_s = 1.0) {
     const std::filesystem::path dir = std::filesystem::path(out.str()) / "runs" / name;
@@ -72,16 +74,22 @@ TEST_F(AnalysisScripts, ReportBuildsEveryFigureAndTableFromTheFixture) {
   EXPECT_NE(page.find("<strong>What this shows</strong>"), std::string::npos);
 }
 
-// The report imports every figure module; the scripts' own command line is one shared wrapper
-// (arbor_results.main_for), so one script and the run-directory plot stand for the rest (Python start-up with
-// matplotlib costs seconds per process on the 2-core CI machine).
+// The report imports every section module; a section's own command line (python3 -m arbor_analysis.NAME) is one
+// shared wrapper (main_for in arbor_analysis/results.py), so one section and the run-directory plot stand for the
+// rest (Python start-up with matplotlib costs seconds per process on the 2-core CI machine).
 TEST_F(AnalysisScripts, FigureScriptsRunOnTheirOwn) {
   ScratchDir out("figures");
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/accuracy.py", fixture(), "--out", out.str()}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({"/usr/bin/env", kPythonPath, kPython, "-m", "arbor_analysis.accuracy", fixture(), "--out",
+                        out.str()},
+                       out / "log.txt"),
+            0)
       << read_text(out / "log.txt");
   EXPECT_GT(std::filesystem::file_size(out / "accuracy_vs_particles.png"), 1000u);
   const std::string run = fixture() + "/runs/uniform-n100-t300-c0__smoother-s1-t1";
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/trajectory.py", run, "--out", out / "run.png"}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({"/usr/bin/env", kPythonPath, kPython, "-m", "arbor_analysis.trajectory", run, "--out",
+                        out / "run.png"},
+                       out / "log.txt"),
+            0)
       << read_text(out / "log.txt");
   EXPECT_GT(std::filesystem::file_size(out / "run.png"), 1000u);
 }
@@ -96,7 +104,7 @@ TEST_F(AnalysisScripts, RunOptionsSeparateConfigurationsAndLabelsNameTheirDimens
       << R"({"key":"b","status":"ok","filter":"fastslam2","map":"tree","assoc":"nn","particles":10,"seed":1,)"
       << R"("threads":1,"likelihood":"student-t","scenario":"s","run_dir":"runs/b","clutter":2})" << "\n";
   const std::string script =
-      "import sys; sys.path.insert(0, '" + kSource + "/analysis'); import arbor_results as ar\n"
+      "import sys; sys.path.insert(0, '" + kSource + "/analysis'); from arbor_analysis import results as ar\n"
       "df = ar.load_results('" + out.str() + "')\n"
       "print(ar.run_option_columns(df), sorted(df['likelihood']))\n"
       "for name, g in ar.lines_for(df.assign(x=[1, 2]), 'x', min_points=1): print(name)\n"
@@ -123,7 +131,7 @@ TEST_F(AnalysisScripts, ClutterTableComparesWithKnownAssociation) {
   write_run("rooms-c2-s1-nn", 0.5, 100);
   write_run("rooms-c2-s2-nn", 0.5, 100);
   write_run("not-a-run", 9.0, 1);
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/clutter.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   const std::string table = read_text(out / "clutter.md");
   EXPECT_NE(table.find("| rooms | 2 | known | 2 | 0.98 | 1 | 0.3 | 1 | 1 |"), std::string::npos) << table;
@@ -144,14 +152,14 @@ TEST_F(AnalysisScripts, ClutterRatioToKnownCarriesItsSeedInterval) {
     write_run("rooms-c2-s" + std::to_string(seed) + "-jcbb", 0.15 * seed);
     if (seed <= 2) write_run("rooms-c2-s" + std::to_string(seed) + "-nn", 0.2 * seed);
   }
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/clutter.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   const std::string table = read_text(out / "clutter.md");
   EXPECT_NE(table.find("| rooms | 2 | jcbb | 3 | 1.5 | 1.5 – 1.5 |"), std::string::npos) << table;
   EXPECT_NE(table.find("| rooms | 2 | nn | 2 | 2 | – |"), std::string::npos) << table;
   std::filesystem::remove_all(out / "runs");
   std::filesystem::remove(out / "clutter.md");
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/clutter.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   EXPECT_EQ(read_text(out / "clutter.md"), table);
 }
@@ -169,7 +177,7 @@ TEST_F(AnalysisScripts, ClutterRatioAlsoAgainstKnownAssociationWithoutItsGate) {
     write_run(world + "-known", 0.2 * seed);
     write_run(world + "-jcbb", 0.3 * seed);
   }
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/clutter.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   const std::string table = read_text(out / "clutter.md");
   const std::size_t second = table.find("without its gate (known_no_gate)");
@@ -193,7 +201,7 @@ TEST_F(AnalysisScripts, ClutterStudyAveragesAWorldsFilterSeedsBeforeItsInterval)
     write_run(world + "-jcbb", 0.1 * seed);
     write_run(world + other + "-jcbb", 0.2 * seed);
   }
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/clutter.py", out.str()}, out / "log.txt"), 0)
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/clutter.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
   const std::string table = read_text(out / "clutter.md");
   EXPECT_NE(table.find("| rooms | 2 | jcbb | 3 | 0.98 | 1 | 0.3 | 1.5 |"), std::string::npos) << table;
@@ -221,7 +229,7 @@ TEST_F(AnalysisScripts, PairedComparisonsPairBySeedAndNeedThreePairs) {
     }
   }
   const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "import arbor_results as ar, accuracy, paired\n"
+                             "from arbor_analysis import results as ar, accuracy, paired\n"
                              "df = ar.load_results('" + out.str() + "')\n"
                              "for s in accuracy.make(df, '" + out.str() + "') + paired.make(df, '" + out.str() + "'):"
                              " print(s.text)\n";
@@ -260,7 +268,7 @@ TEST_F(AnalysisScripts, DatasetSweepsGetAnAccuracyTableAgainstTheirReference) {
       }
   }
   const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "import arbor_results as ar, dataset_accuracy\n"
+                             "from arbor_analysis import results as ar, dataset_accuracy\n"
                              "df = ar.load_results('" + out.str() + "')\n"
                              "for s in dataset_accuracy.make(df, '" + out.str() + "', '" + out.str() + "'):"
                              " print('##', s.title); print(s.text)\n"
@@ -320,7 +328,7 @@ TEST_F(AnalysisScripts, FailureRateAndTailsAreComputedRightOnHandMadeRuns) {
   }
   // The report's section: one row per configuration over every scenario, the smoother as the reference.
   const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "import arbor_results as ar, failures\n"
+                             "from arbor_analysis import results as ar, failures\n"
                              "df = ar.load_results('" + out.str() + "')\n"
                              "for s in failures.make(df, '" + out.str() + "'): print('##', s.title); print(s.text)\n";
   ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
@@ -337,7 +345,7 @@ TEST_F(AnalysisScripts, FailureRateAndTailsAreComputedRightOnHandMadeRuns) {
       << log;
 
   // heldout.md: rooms on its own, all simulated worlds (the same runs here), and the dataset apart.
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/heldout.py", out.str()}, out / "heldout.log"), 0)
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/heldout.py", out.str()}, out / "heldout.log"), 0)
       << read_text(out / "heldout.log");
   const std::string table = read_text(out / "heldout.md");
   // Finished ATEs 0.3, 0.5, 0.8, 1.16, 1.3: p90 1.16 + 0.6 × 0.14; median 0.8 over the smoother's 0.4.
@@ -379,7 +387,7 @@ TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {
       }
   }
   const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "import arbor_results as ar, step_series\n"
+                             "from arbor_analysis import results as ar, step_series\n"
                              "df = ar.load_results('" + out.str() + "')\n"
                              "for s in step_series.make(df, '" + out.str() + "', '" + out.str() + "'): print(s.text)\n";
   ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
@@ -405,7 +413,7 @@ TEST_F(AnalysisScripts, TraceRunClassesEveryDecisionAgainstTheTrueIds) {
                                                  "2,0,2\n2,1,-1\n2,2,0\n";
   std::ofstream(out / "run/trajectory.tum") << "0 9 9 0 0 0 0 1\n0 0 0 0 0 0 0 1\n0.5 1.1 0 0 0 0 0 1\n"
                                                "1 2 0.2 0 0 0 0.04997916927 0.99875026\n";
-  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/trace_run.py", out / "world.scn", out / "run", "--csv"},
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/trace_run.py", out / "world.scn", out / "run", "--csv"},
                        out / "log.txt"),
             0)
       << read_text(out / "log.txt");
@@ -423,7 +431,7 @@ TEST_F(AnalysisScripts, TraceRunClassesEveryDecisionAgainstTheTrueIds) {
   // Without true ids (real data) there is nothing to class: a clear error, not a table of zeros.
   std::ofstream(out / "unlabelled.scn") << "step 0 0 0 0\ntruth 0 0 0\nscan 1\nz 5 0 - -\n";
   std::ofstream(out / "run/associations.csv") << "step,measurement,landmark\n0,0,0\n";
-  EXPECT_EQ(run_to_end({kPython, kSource + "/analysis/trace_run.py", out / "unlabelled.scn", out / "run"},
+  EXPECT_EQ(run_to_end({kPython, kSource + "/analysis/studies/trace_run.py", out / "unlabelled.scn", out / "run"},
                        out / "log2.txt"),
             1);
   EXPECT_NE(read_text(out / "log2.txt").find("step 0, measurement 0: the scenario gives no true id"),

@@ -9,8 +9,8 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "analysis"))
 
-import arbor_results as ar  # noqa: E402
-import dataset_accuracy  # noqa: E402
+from arbor_analysis import results as ar  # noqa: E402
+from arbor_analysis import dataset_accuracy  # noqa: E402
 
 
 def report(results):

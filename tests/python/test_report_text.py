@@ -13,8 +13,8 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "analysis"))
 
-import arbor_results as ar  # noqa: E402
-import html_report  # noqa: E402
+from arbor_analysis import results as ar  # noqa: E402
+from arbor_analysis import html_report  # noqa: E402
 
 # Pieces a careless or hostile spec could hold: newlines that start blocks, fences, images of local files,
 # table bars, HTML, Markdown emphasis, escapes.

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Thread-scaling figure: speed-up of the median step time over the 1-thread run of the same configuration,
 against the thread count, with the ideal line. Reads: results.jsonl columns threads, step_time_median_s
 (wall_time_s when the step time is missing)."""
@@ -7,7 +6,7 @@ import sys
 
 import numpy as np
 
-import arbor_results as ar
+from . import results as ar
 
 FIGURE = "thread_scaling.png"
 

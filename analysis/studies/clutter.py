@@ -18,7 +18,7 @@ interval from a paired bootstrap over the seeds: one run's aligned ATE varies
 several-fold from seed to seed, so a ratio measured on 20 seeds is uncertain by tens of percent, and a target
 such as "at most 1.5x" can only be judged against that interval.
 
-Usage: /usr/bin/python3 analysis/clutter.py OUT
+Usage: /usr/bin/python3 analysis/studies/clutter.py OUT
 Writes OUT/clutter.md, OUT/clutter.csv and OUT/clutter.png (F1, ATE ratio and map ratio against clutter).
 OUT without runs/ but with a clutter.csv (a committed study) is read from that CSV instead.
 """
@@ -32,9 +32,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import MIN_VALUES_FOR_CI, fmt_mean_ci, fmt_num, markdown_table, read_study_runs  # noqa: E402
-from paired import difference  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis.results import MIN_VALUES_FOR_CI, fmt_mean_ci, fmt_num, markdown_table, read_study_runs  # noqa: E402
+from arbor_analysis.paired import difference  # noqa: E402
 
 STRATEGIES = ["known", "known_no_gate", "nn", "jcbb", "jcbb_no_existence", "locality"]
 RUN = r"(?P<world>[a-z]+)-c(?P<clutter>[\d.]+)-s(?P<seed>\d+)(?:-f(?P<filter_seed>\d+))?-(?P<strategy>[a-z_]+)"

@@ -3,10 +3,11 @@
 
 Inputs: the run directory (trajectory.tum, map.csv, result.json) and, for the ground truth overlay, the
 scenario file the run used (truth poses, surveyed landmarks, GPS track; see docs/datasets.md). Writes PNG.
-Usage: analysis/plot_real_run.py RUN_DIR --scenario FILE --out FIG.png [--title TEXT]
+Usage: analysis/studies/plot_real_run.py RUN_DIR --scenario FILE --out FIG.png [--title TEXT]
 """
 import argparse
-import json
+import os
+import sys
 
 import matplotlib
 
@@ -14,7 +15,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import arbor_results as ar  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis import results as ar  # noqa: E402
 
 
 def main():
@@ -31,7 +33,7 @@ def main():
     gps = track[["t", "x", "y"]].to_numpy(dtype=float)
     est = ar.read_tum(f"{args.run_dir}/trajectory.tum")[["t", "x", "y"]].to_numpy(dtype=float)
     est_map = ar.read_map_csv(f"{args.run_dir}/map.csv")[["x", "y"]].to_numpy(dtype=float)
-    result = json.load(open(f"{args.run_dir}/result.json"))
+    result = ar.read_result(args.run_dir)
 
     fig, ax = plt.subplots(figsize=(7, 6))
     if len(gps):

@@ -3,7 +3,7 @@
 
 Left: median hypotheses vs n (log-log) per strategy, with fitted slopes; middle: median time per call vs m;
 right: the locality tree vs the unrestricted interpretation tree (hypotheses vs n, m = 5).
-Usage: /usr/bin/python3 analysis/plot_association.py results/association/<run>/association.csv [out.png]
+Usage: /usr/bin/python3 analysis/studies/plot_association.py results/association/<run>/association.csv [out.png]
 Prints every fitted slope it plots.
 """
 import sys

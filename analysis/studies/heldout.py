@@ -2,7 +2,7 @@
 """The held-out protocol sweep (issue 41): per scenario group and configuration, the failure rate and the
 tails of the SE(2)-aligned ATE, beside the Ceres smoother as the reference. Groups: each dataset on its own,
 simulated worlds by world type and clutter rate, and all simulated worlds together. A run fails as
-analysis/failures.py defines it (above 3x the smoother's aligned ATE on its scenario and seed, above dead
+analysis/arbor_analysis/failures.py defines it (above 3x the smoother's aligned ATE on its scenario and seed, above dead
 reckoning's, or not finished).
 
 Columns: runs; failures (k/n and %); mean, median and p90 aligned ATE over the finished runs; median NEES; the
@@ -10,7 +10,7 @@ median consistency horizon (where the rows have it); total rejected_measurements
 known association's gate); median association F1; the median aligned ATE over the smoother's median in the
 same group.
 
-Usage: /usr/bin/python3 analysis/heldout.py RESULTS_DIR [--out DIR]
+Usage: /usr/bin/python3 analysis/studies/heldout.py RESULTS_DIR [--out DIR]
 Writes DIR/heldout.md and DIR/heldout.csv (default DIR: RESULTS_DIR).
 """
 import argparse
@@ -19,9 +19,9 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import arbor_results as ar  # noqa: E402
-import failures  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis import failures  # noqa: E402
+from arbor_analysis import results as ar  # noqa: E402
 
 ALL_SIMULATED = "all simulated worlds"
 

@@ -4,7 +4,7 @@ vs N, with least-squares slopes over N = 1e3..1e6 printed on the plot and to std
 
 Input: a results/maps/<commit>_<host>_<compiler>/ folder holding map_benchmark.json and step_benchmark.json
 (written by bench/run_map_benchmarks.sh). Output in the same folder: map_complexity.png, summary.csv.
-Usage: /usr/bin/python3 analysis/plot_map_complexity.py results/maps/<folder>
+Usage: /usr/bin/python3 analysis/studies/plot_map_complexity.py results/maps/<folder>
 """
 import json
 import re

@@ -17,11 +17,13 @@ heading error exceeds 1, 2 and 5 degrees. Needs a scenario with true ids (`arbor
 """
 import argparse
 import math
+import os
 import sys
 
 import pandas as pd
 
-import arbor_results as ar
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis import results as ar  # noqa: E402
 
 COUNTS = ["first", "right", "duplicate", "wrong", "missed", "clutter_paired"]
 

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Hypotheses figure: association hypotheses visited against map size, per strategy (locality-restricted
 vs unrestricted interpretation tree), log-log with fitted slopes (Ge & Lewis 2006: linear in n with locality).
 Reads: results.jsonl columns world_landmarks (or landmarks), assoc, and the first present of
@@ -6,7 +5,7 @@ assoc_hypotheses_mean / hypotheses_mean / hypotheses (per step, divided by steps
 
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 FIGURE = "hypotheses_vs_map_size.png"
 CANDIDATES = ["assoc_hypotheses_mean", "hypotheses_mean", "hypotheses_per_step", "assoc_hypotheses", "hypotheses"]

@@ -5,37 +5,32 @@ place. MRCLAM's 15 landmarks stand in clusters of two or three 0.18-0.25 m apart
 noise (sigma 0.11-0.19 m), so a geometric strategy (JCBB, NN) cannot tell a cluster's members apart and its
 F1 against the barcodes counts those as false matches; the place count says what it got wrong otherwise.
 Pairings with landmarks the run later dropped are not in its map.csv and are left out.
-Usage: analysis/place_association.py RUN_DIR... [--radius 0.3]   (run directories of `arbor run`)"""
+Usage: analysis/studies/place_association.py RUN_DIR... [--radius 0.3]   (run directories of `arbor run`)"""
 
 import argparse
 import csv
-import json
 import os
+import sys
 
 import numpy as np
 
-import arbor_results as ar
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis import results as ar  # noqa: E402
 
 
 def truth_positions(scenario_path):
     """True landmark id -> position, from the scenario's `landmark ID X Y` lines."""
-    out = {}
-    with open(scenario_path, encoding="utf-8") as f:
-        for line in f:
-            fields = line.split()
-            if len(fields) == 4 and fields[0] == "landmark":
-                out[int(fields[1])] = np.array([float(fields[2]), float(fields[3])])
-    return out
+    landmarks = ar.read_scenario_truth(scenario_path)[1]
+    return {int(i): np.array([x, y]) for i, x, y in zip(landmarks["id"], landmarks["x"], landmarks["y"])}
 
 
 def count(run_dir, radius):
     """(pairings scored, wrong id in the right place, wrong place) for one run directory."""
-    with open(os.path.join(run_dir, "result.json"), encoding="utf-8") as f:
-        scenario = json.load(f)["config"]["scenario"]
+    scenario = ar.read_result(run_dir)["config"]["scenario"]
     steps = ar.read_scenario_steps(scenario)
     where = truth_positions(scenario)
-    with open(os.path.join(run_dir, "map.csv"), encoding="utf-8") as f:
-        label = {int(r["id"]): int(r["truth_label"]) for r in csv.DictReader(f)}
+    landmarks = ar.read_map_csv(os.path.join(run_dir, "map.csv"))
+    label = {int(i): int(t) for i, t in zip(landmarks["id"], landmarks["truth_label"])}
     scored = near = far = 0
     with open(os.path.join(run_dir, "associations.csv"), encoding="utf-8") as f:
         for r in csv.DictReader(f):

@@ -1,11 +1,10 @@
-#!/usr/bin/python3
 """Association figure: precision, recall and F1 of the association decisions against clutter (spurious
 measurements per scan), one line per strategy, mean and 95 % CI over seeds (the individual values where there are fewer than 3).
 Reads: results.jsonl columns clutter, assoc, assoc_f1 (assoc_precision, assoc_recall when present)."""
 
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 FIGURE = "association_vs_clutter.png"
 

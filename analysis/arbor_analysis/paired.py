@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Paired comparisons: "A beats B" as a statement with a test behind it. Where runs share their scenario and
 seed and differ in one method dimension (association strategy, filter version, particle count, a run option),
 each metric's per-pair difference A - B, its mean and 95 % CI (t, over pairs; only from 3 pairs on), and
@@ -9,7 +8,7 @@ Reads: results.jsonl columns scenario, seed, the method columns and ate_rmse_m, 
 import itertools
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 # (column, name in the table, unit, True when lower is better)
 METRICS = [("ate_rmse_m", "ATE RMSE", "m", True), ("landmark_rmse_m", "landmark RMSE", "m", True),

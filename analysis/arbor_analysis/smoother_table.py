@@ -1,11 +1,10 @@
-#!/usr/bin/python3
 """FastSLAM vs smoother table: for each scenario, the ATE and landmark RMSE of every FastSLAM configuration
 next to the Ceres smoother's on the same scenario and seed, and the ratio (DESIGN.md §10 target: FastSLAM ATE
 <= 1.3x the smoother's with true association). Reads: results.jsonl rows with filter = smoother and fastslam*."""
 
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 
 def make(df, out_dir, results_path=None):

@@ -1,22 +1,19 @@
-#!/usr/bin/python3
 """Trajectory-and-map figure of one run: estimated trajectory (trajectory.tum) and map (map.csv) over the
-scenario's ground truth (poses, landmarks, GPS). Usage: trajectory.py RUN_DIR [--scenario FILE] [--out PNG].
+scenario's ground truth (poses, landmarks, GPS). Usage: PYTHONPATH=analysis /usr/bin/python3 -m arbor_analysis.trajectory RUN_DIR [--scenario FILE] [--out PNG].
 The scenario is taken from RUN_DIR/result.json (config.scenario) unless given."""
 
 import argparse
-import json
 import os
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 
 def find_scenario(run_dir, sweep_dir=None):
     """The scenario file of a run: result.json's config.scenario, tried as written, relative to the run's
     sweep directory and relative to the run directory."""
     try:
-        with open(os.path.join(run_dir, "result.json"), encoding="utf-8") as f:
-            path = json.load(f).get("config", {}).get("scenario")
+        path = ar.read_result(run_dir).get("config", {}).get("scenario")
     except (OSError, ValueError):
         return None
     if not path:

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The report as one self-contained HTML file (report.html beside report.md): figures embedded as data URIs,
 tables sortable by a click on their header with a few lines of inline script, no network and nothing but the
 standard library. It renders the subset of Markdown the report's sections use: headings, paragraphs, bullet
@@ -51,7 +50,7 @@ document.querySelectorAll('table').forEach(function (table) {
 """
 
 
-# A backslash escape of Markdown (arbor_results.md_text writes them): the character as text.
+# A backslash escape of Markdown (results.md_text writes them): the character as text.
 ESCAPE = re.compile(r"\\([\\`*\[\]!|<>])")
 # The report embeds only the figures it drew: image files inside its own directory, of bounded size.
 FIGURE_KINDS = {".png": "png", ".svg": "svg+xml"}
@@ -119,7 +118,7 @@ def markdown_to_html(text, base_dir):
             i += 1
         elif fence_of(line):
             # Closed only by a line of backticks at least as long as the opening (CommonMark), so a spec whose
-            # text holds a fence of its own (arbor_results.code_block) cannot close it.
+            # text holds a fence of its own (results.code_block) cannot close it.
             fence = fence_of(line)
             j = i + 1
             while j < len(lines) and not (lines[j].strip().startswith(fence) and set(lines[j].strip()) == {"`"}):

@@ -1,15 +1,13 @@
-#!/usr/bin/python3
 """Accuracy on real datasets: one table per dataset with, per configuration (filter, association, map back
 end, particles, run options), the trajectory error against the dataset's reference (its GPS track or motion
 capture, as the scenario names it), dead reckoning's error on the same reference, landmark RMSE and
 association F1 where the dataset has landmark ground truth or ids, and the run time against the data's own
 duration. Reads results.jsonl and each run's result.json (runs/<key>/result.json)."""
 
-import json
 import os
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 # result.json fields a dataset table shows besides the results row's own columns.
 EXTRA = ["scenario_duration_s", "dead_reckoning_ate_m", "ate_aligned", "scenario"]
@@ -22,10 +20,8 @@ def with_run_details(df, results_dir):
     fields = [k for k in EXTRA if k == "scenario" or k not in df]  # the rows' "scenario" is the file's path
     details = []
     for run_dir in df["run_dir"]:
-        path = os.path.join(results_dir, str(run_dir), "result.json")
         try:
-            with open(path, encoding="utf-8") as f:
-                result = json.load(f)
+            result = ar.read_result(os.path.join(results_dir, str(run_dir)))
         except (OSError, ValueError):
             result = {}
         details.append({("scenario_metadata" if k == "scenario" else k): result.get(k) for k in fields})

@@ -7,7 +7,7 @@ scans whose pose NEES lies in the two-sided 95 % chi-square(3) band, every run a
 samplings paired by seed. UTIAS: per robot, FastSLAM's ATE (best particle, and SE(2)-aligned) beside the
 smoother's on the same scenario.
 
-Usage: /usr/bin/python3 analysis/motion_sampling.py OUT
+Usage: /usr/bin/python3 analysis/studies/motion_sampling.py OUT
 Writes OUT/motion_sampling.md, OUT/motion_sampling_sim.csv, OUT/motion_sampling_utias.csv and
 OUT/motion_sampling.png.
 """
@@ -20,8 +20,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import markdown_table, mean_ci, read_study_runs  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis.results import markdown_table, mean_ci, read_study_runs  # noqa: E402
 
 SAMPLINGS = ["per-scan", "per-control"]
 COLORS = {"per-scan": "tab:blue", "per-control": "tab:orange"}

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Failures and tails (issue 41): per configuration, how many runs failed and how the SE(2)-aligned ATE spreads
 (mean, median, 90th percentile), beside the Ceres smoother's runs as the reference. A mean alone hides a
 configuration that is good on most seeds and lost on a few; the failure rate counts those runs instead.
@@ -9,7 +8,7 @@ import sys
 
 import numpy as np
 
-import arbor_results as ar
+from . import results as ar
 
 ATE = "ate_aligned_rmse_m"
 # A run whose aligned ATE is above this multiple of the smoother's on the same scenario and seed has failed.

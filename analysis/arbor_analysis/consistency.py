@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Consistency figure: the pose NEES of FastSLAM runs over time against its chi-square band.
 
 A consistent 3-dof estimator's single-run NEES lies in the two-sided 95 % band of chi-square(3),
@@ -9,7 +8,7 @@ each run's share of scans inside the single-run band, and, where a configuration
 the same world, the 30-seed average against its band. The NEES mean is not shown: a few collapse episodes
 dominate it.
 Reads: results.jsonl columns nees_in_band_fraction, nees_median; each run's steps.csv for the curves.
-Usage: consistency.py RESULTS_DIR (prints the section; the report calls make())."""
+Usage: PYTHONPATH=analysis /usr/bin/python3 -m arbor_analysis.consistency RESULTS_DIR (prints the section; the report calls make())."""
 
 import os
 import sys
@@ -17,7 +16,7 @@ import sys
 import numpy as np
 import pandas as pd
 
-import arbor_results as ar
+from . import results as ar
 
 SINGLE_RUN_BAND = (0.2158, 9.3484)
 FIGURE = "nees_over_time.png"

@@ -5,7 +5,7 @@ clutter grows. It simulates the sweep's worlds with the sweep's seeds and runs t
 --check SWEEP_DIR (an `arbor sweep experiments/sweeps/association.toml --out SWEEP_DIR` of the same build) every
 F1 must equal the sweep's digit for digit.
 
-Usage: PYTHONPATH=build/python /usr/bin/python3 analysis/api_association_ablation.py OUT [--check SWEEP_DIR]
+Usage: PYTHONPATH=build/python /usr/bin/python3 analysis/studies/api_association_ablation.py OUT [--check SWEEP_DIR]
 Writes OUT/api_association.csv and OUT/api_association.png.
 """
 import argparse

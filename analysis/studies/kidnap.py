@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The kidnapped-robot study (experiments/scripts/kidnap_study.sh): per run, the scans from the kidnap until
 the best particle's position is first back within max(RECOVERED_M, BASELINE_FACTOR x its median error in the
 BASELINE_SCANS scans before the kidnap) of the truth (none: lost), and its error ten
@@ -8,18 +8,17 @@ the runs without a kidnap (there they can only be loop closures or mistakes). Ea
 its step is below the error at the step before, and as further otherwise: a loop closure or a recovery moves
 the robot towards the truth, a mistake away from it.
 
-Usage: /usr/bin/python3 analysis/kidnap.py OUT   (writes OUT/kidnap.csv and OUT/kidnap.md)
+Usage: /usr/bin/python3 analysis/studies/kidnap.py OUT   (writes OUT/kidnap.csv and OUT/kidnap.md)
 """
 import csv
-import json
 import os
 import pathlib
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from arbor_results import read_scenario_truth, read_tum  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis.results import read_result, read_scenario_truth, read_tum  # noqa: E402
 
 RECOVERED_M = 1.0   # position error under which the robot counts as found again, or
 BASELINE_FACTOR = 2.0  # this factor times its median error over the BASELINE_SCANS scans before the kidnap
@@ -79,7 +78,7 @@ def main():
         if not (run / "result.json").exists():
             continue
         world, kind, seed, mode = run.name.split("-")
-        result = json.loads((run / "result.json").read_text())
+        result = read_result(run)
         kidnap = result["scenario"].get("kidnap_time_s")
         scans, error_10, final_error, errors = recovery(run, out / "scenarios" / f"{world}-{kind}-{seed}.scn",
                                                         None if kidnap is None else float(kidnap))

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """The filter over time: the step time per map back end (rolling median over 25 steps) and the effective
 sample size N_eff / particles per filter and association strategy, on one representative run of each
 configuration (the largest particle count and world, the least clutter, the first seed), with a table of
@@ -8,7 +7,7 @@ Reads: results.jsonl (filter, map, assoc, particles, seed, run_dir) and each run
 import os
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 FIGURE = "step_time_and_neff.png"
 WINDOW = 25  # steps in the step time's rolling median: one slow step (a resample, a page fault) is not a trend

@@ -1,11 +1,10 @@
-#!/usr/bin/python3
 """Complexity figure: FastSLAM step time against the number of landmarks, log-log, one line per map back end,
 with the fitted slope and its 95 % confidence interval (DESIGN.md §3: tree/trie <= 0.15, naive ~ 1).
 Reads: results.jsonl columns world_landmarks (or landmarks), step_time_median_s, map."""
 
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 FIGURE = "complexity_step_time.png"
 

@@ -1,11 +1,10 @@
-#!/usr/bin/python3
 """Accuracy figure: trajectory error (ATE RMSE) and landmark RMSE against the number of particles, one line per
 filter / map back end / association strategy, mean and 95 % CI over seeds (the individual values where there are fewer than 3).
 Reads: results.jsonl columns particles, ate_rmse_m, landmark_rmse_m, filter, map, assoc, seed."""
 
 import sys
 
-import arbor_results as ar
+from . import results as ar
 
 FIGURE = "accuracy_vs_particles.png"
 COLUMNS = {"ate_rmse_m": "ATE RMSE (m)", "landmark_rmse_m": "landmark RMSE (m)"}

@@ -7,11 +7,10 @@ the reference on the same data, averaged over runs: the smoother with true assoc
 has it (simulation, UTIAS), else the smoother given that very run's decisions (Victoria Park). The DESIGN.md
 §10 target is <= 1.3 with true association.
 
-Usage: /usr/bin/python3 analysis/smoother_vs_fastslam.py OUT
+Usage: /usr/bin/python3 analysis/studies/smoother_vs_fastslam.py OUT
 Writes OUT/smoother_vs_fastslam.csv (one row per run), OUT/smoother_vs_fastslam.md and .png.
 """
 import glob
-import json
 import os
 import sys
 
@@ -20,6 +19,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
+from arbor_analysis import results as ar  # noqa: E402
 
 FILTER_NAMES = {"fastslam1": "FastSLAM 1.0", "fastslam2": "FastSLAM 2.0"}
 
@@ -39,8 +41,7 @@ def describe(run_dir, result):
         # The source run sits beside this one (result.json holds the absolute path where it was run, which a
         # copied results folder no longer has).
         name = os.path.basename(os.path.normpath(source))
-        with open(os.path.join(os.path.dirname(run_dir), name, "result.json")) as f:
-            s = json.load(f)["config"]
+        s = ar.read_result(os.path.join(os.path.dirname(run_dir), name))["config"]
         label = f"smoother on {FILTER_NAMES[s['filter']]}+{s['assoc']} M={s['particles']} decisions{loss}"
         return label, "smoother", name
     return f"{FILTER_NAMES[c['filter']]}, {c['assoc']}, M={c['particles']}", "fastslam", None
@@ -51,8 +52,7 @@ def load(root):
     for path in sorted(glob.glob(os.path.join(root, "*", "*", "result.json"))):
         run_dir = os.path.dirname(path)
         dataset = os.path.basename(os.path.dirname(run_dir))
-        with open(path) as f:
-            r = json.load(f)
+        r = ar.read_json(path)
         method, kind, source = describe(run_dir, r)
         rows.append({"dataset": dataset, "family": family(dataset), "run": os.path.basename(run_dir),
                      "method": method, "kind": kind, "source": source,

@@ -1,9 +1,7 @@
-#!/usr/bin/python3
-"""Shared loading and plotting helpers for the analysis scripts: the one place that knows the sweep's
-result files (results.jsonl / results.csv, runs/<key>/{result.json,trajectory.tum,map.csv}, scenarios)."""
+"""The helpers the report's sections and the studies share: a sweep's rows and one run's files as pandas frames
+(read by arbor_files, python/arbor_files.py, the reader `import arbor` uses too), the statistics, tables and figures."""
 
 import glob
-import json
 import math
 import os
 import re
@@ -15,6 +13,8 @@ matplotlib.use("Agg")  # files only, never a window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+
+import arbor_files  # noqa: E402
 
 PARAMS = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed", "filter", "map",
           "assoc", "particles", "seed", "threads"]
@@ -30,27 +30,11 @@ def load_results(path):
     """All rows of a sweep directory (or of a results.jsonl / results.csv file) as a DataFrame.
     A trailing line without newline is an interrupted append and is ignored; a key recorded twice keeps its
     last row (what --retry-failed appends)."""
-    if os.path.isdir(path):
-        jsonl = os.path.join(path, "results.jsonl")
-        path = jsonl if os.path.exists(jsonl) else os.path.join(path, "results.csv")
+    path = arbor_files.results_file(path)
     if path.endswith(".csv"):
-        df = pd.read_csv(path)
+        df = pd.read_csv(path)  # arbor_files gives the CSV's cells as text; pandas types its columns
     else:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-        lines = text.split("\n")[:-1]  # the piece after the last newline is not a row
-        rows = []
-        for number, line in enumerate(lines, 1):
-            if not line.strip():
-                continue
-            try:
-                row = json.loads(line)
-            except json.JSONDecodeError as e:
-                raise ValueError(f"{path}:{number}: not a JSON row ({e.msg})") from None
-            if not isinstance(row, dict):
-                raise ValueError(f"{path}:{number}: a row must be a JSON object")
-            rows.append(row)
-        df = pd.DataFrame(rows)
+        df = pd.DataFrame(arbor_files.read_rows(path))
     if df.empty:
         return df
     if "key" not in df:
@@ -355,8 +339,7 @@ def read_study_runs(pattern, regex, fields):
         m = re.fullmatch(regex, os.path.basename(os.path.dirname(path)))
         if not m:
             continue
-        with open(path, encoding="utf-8") as f:
-            r = json.load(f)
+        r = arbor_files.read_json(path)
         row = {k: (int(v) if v and v.isdigit() else v) for k, v in m.groupdict().items()}
         for field in fields:
             row[field] = r.get(field)
@@ -367,17 +350,14 @@ def read_study_runs(pattern, regex, fields):
 # --- one run's files -------------------------------------------------------------------------------------
 
 def read_tum(path):
-    """A TUM trajectory (t x y z qx qy qz qw) with the planar heading recovered from the quaternion."""
-    data = np.loadtxt(path, comments="#", ndmin=2)
-    df = pd.DataFrame(data[:, :8], columns=["t", "x", "y", "z", "qx", "qy", "qz", "qw"])
-    df["theta"] = 2.0 * np.arctan2(df["qz"], df["qw"])
-    return df
+    """A TUM trajectory: columns t, x, y and theta (the planar heading recovered from the quaternion)."""
+    return pd.DataFrame(arbor_files.read_tum(path), columns=["t", "x", "y", "theta"])
 
 
 def read_map_csv(path):
     """An estimated map: one landmark per row. Positions are the columns x, y (or the first two numeric
     columns after an id column when the header names them otherwise)."""
-    df = pd.read_csv(path, comment="#")
+    df = pd.DataFrame(arbor_files.read_map(path))
     lower = {c.lower().strip(): c for c in df.columns}
     for xs, ys in (("x", "y"), ("mean_x", "mean_y"), ("mu_x", "mu_y"), ("x_m", "y_m")):
         if xs in lower and ys in lower:
@@ -390,47 +370,15 @@ def read_map_csv(path):
 
 def read_scenario_truth(path):
     """Ground truth from a scenario file (docs/scenario_format.md): poses per step, landmarks, GPS track."""
-    poses, landmarks, gps = [], [], []
-    time = 0.0
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            fields = line.split()
-            if not fields or fields[0].startswith("#"):
-                continue
-            kind = fields[0]
-            if kind == "step":
-                time = float(fields[1])
-            elif kind == "truth":
-                poses.append((time, float(fields[1]), float(fields[2]), float(fields[3])))
-            elif kind == "landmark":
-                landmarks.append((int(fields[1]), float(fields[2]), float(fields[3])))
-            elif kind == "gps":
-                gps.append((float(fields[1]), float(fields[2]), float(fields[3])))
+    poses, landmarks, gps = arbor_files.read_scenario_truth(path)
     return (pd.DataFrame(poses, columns=["t", "x", "y", "theta"]),
             pd.DataFrame(landmarks, columns=["id", "x", "y"]),
             pd.DataFrame(gps, columns=["t", "x", "y"]))
 
 
-def read_scenario_steps(path):
-    """Per step of a scenario file, in order: [time, true pose (x, y, theta) or None, the true id of each
-    measurement (-1 for clutter, None where the file gives none)]. Step k is the step that a run's
-    associations.csv calls k."""
-    steps = []
-    with open(path, encoding="utf-8") as f:
-        for number, line in enumerate(f, 1):
-            fields = line.split()
-            if not fields or fields[0].startswith("#"):
-                continue
-            if fields[0] == "step":
-                steps.append([float(fields[1]), None, []])
-            elif fields[0] == "truth" and steps:
-                steps[-1][1] = tuple(float(v) for v in fields[1:4])
-            elif fields[0] == "z":
-                if len(fields) < 5:
-                    raise ValueError(f"{path}:{number}: a measurement line needs 5 fields (z R PHI SIG TRUTH)")
-                label = fields[4]
-                steps[-1][2].append(-1 if label == "clutter" else None if label == "-" else int(label))
-    return steps
+read_scenario_steps = arbor_files.read_scenario_steps
+read_json = arbor_files.read_json
+read_result = arbor_files.read_result
 
 
 def results_dir_of(path):
