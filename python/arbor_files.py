@@ -42,9 +42,26 @@ def read_json(path):
         return json.load(f)
 
 
+# result.json's config keys that, before each run option had one name (issue 42), differed from the option's
+# command-line name: old key -> the option's name, so a results folder from before reads as one from now.
+RENAMED_CONFIG_KEYS = {
+    "gate_probability": "chi2",
+    "new_landmark_probability": "new_landmark_gate",
+    "known_gate_probability": "known_gate",
+    "log_odds_prune": "prune",
+    "log_odds_confirm": "confirm",
+}
+
+
 def read_result(run_dir):
-    """RUN_DIR/result.json as a dict."""
-    return read_json(os.path.join(run_dir, "result.json"))
+    """RUN_DIR/result.json as a dict, its config under the run options' own names (old keys renamed)."""
+    result = read_json(os.path.join(run_dir, "result.json"))
+    config = result.get("config") if isinstance(result, dict) else None
+    if isinstance(config, dict):
+        for old, new in RENAMED_CONFIG_KEYS.items():
+            if old in config and new not in config:
+                config[new] = config.pop(old)
+    return result
 
 
 def results_file(path):

@@ -33,3 +33,10 @@ def test_rows_of_a_cut_log_end_at_the_last_newline(tmp_path):
     (tmp_path / "results.jsonl").write_text('{"key": "a", "ate_rmse_m": 1.5}\n{"key": "b", "ate_', encoding="utf-8")
     assert arbor_files.read_rows(str(tmp_path)) == [{"key": "a", "ate_rmse_m": 1.5}]
     assert list(ar.load_results(str(tmp_path))["key"]) == ["a"]
+
+
+def test_a_result_from_before_issue_42_reads_under_the_options_own_names(tmp_path):
+    (tmp_path / "result.json").write_text('{"config": {"gate_probability": 0.95, "log_odds_confirm": 2.0, '
+                                          '"seed": 3}, "ate_rmse_m": 0.5}', encoding="utf-8")
+    config = arbor_files.read_result(str(tmp_path))["config"]
+    assert config == {"chi2": 0.95, "confirm": 2.0, "seed": 3}
