@@ -80,19 +80,11 @@ TEST(GateCovariance, ASetThatDriftedOverAGapPairsTheReSightedLandmark) {
 // The rooms world with clutter (as LoopClosure.RunsAreBitIdenticalAcrossBackendsAndThreads) under JCBB, with
 // set gating and roughened resampling on.
 TEST(GateCovariance, SetGatingAndRougheningAreBitIdenticalAcrossBackendsAndThreads) {
-  SimulationOptions o;
-  o.seed = o.world.seed = 3;
-  o.world.kind = WorldKind::kRooms;
-  o.world.landmarks = 150;
-  o.steps = 200;
-  o.clutter_rate = 2.0;
-  const Scenario scenario = simulate(o);
+  const Scenario scenario = testing::cluttered_rooms(3, 150, /*clutter=*/2.0, /*scans=*/200);
   testing::expect_bit_identical_across_backends_and_threads(
       scenario, "set_gates",
       [](RunConfig& c) {
-        c.assoc = "jcbb";
-        c.options.particles = 20;
-        c.options.seed = 3;
+        testing::small_jcbb_run(c);
         c.options.gate_covariance = GateCovariance::kSet;
         c.options.roughen = 1.0;
       },

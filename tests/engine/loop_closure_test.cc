@@ -105,18 +105,11 @@ TEST(LoopClosure, ACopyBetweenTwoDormantLandmarksIsNotClosedOn) {
 // re-sightings outside the gates; the run closes loops there, and stays bit-identical for every back end
 // and thread count.
 TEST(LoopClosure, RunsAreBitIdenticalAcrossBackendsAndThreads) {
-  SimulationOptions o;
-  o.seed = o.world.seed = 3;
-  o.world.kind = WorldKind::kRooms;
-  o.world.landmarks = 250;
-  o.clutter_rate = 5.0;
-  const Scenario scenario = simulate(o);
+  const Scenario scenario = testing::cluttered_rooms(3, 250, /*clutter=*/5.0);
   testing::expect_bit_identical_across_backends_and_threads(
       scenario, "loop_closure",
       [](RunConfig& c) {
-        c.assoc = "jcbb";
-        c.options.particles = 20;
-        c.options.seed = 3;
+        testing::small_jcbb_run(c);
         c.options.close_loops = true;
       },
       [](const RunOutput& out, const std::string& what) { EXPECT_GT(out.result["loop_closures"].get<int>(), 0) << what; });

@@ -121,9 +121,7 @@ TEST(ResampleMove, IsBitIdenticalAcrossBackendsAndThreads) {
   testing::expect_bit_identical_across_backends_and_threads(
       scenario, "resample_move",
       [](RunConfig& c) {
-        c.assoc = "jcbb";
-        c.options.particles = 20;
-        c.options.seed = 3;
+        testing::small_jcbb_run(c);
         c.options.move_window = 10;
       },
       [](const RunOutput& out, const std::string& what) {

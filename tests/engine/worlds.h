@@ -28,6 +28,18 @@ inline Scenario simulated_world(std::uint64_t seed, int scans, double clutter = 
   return simulate(o);
 }
 
+// A rooms world with clutter: corridors, loops and spurious points, where the options that act on association
+// (set gating, loop closing, resample-move) have something to do.
+inline Scenario cluttered_rooms(std::uint64_t seed, int landmarks, double clutter, int scans = SimulationOptions{}.steps) {
+  SimulationOptions o;
+  o.seed = o.world.seed = seed;
+  o.world.kind = WorldKind::kRooms;
+  o.world.landmarks = landmarks;
+  o.steps = scans;
+  o.clutter_rate = clutter;
+  return simulate(o);
+}
+
 // A robot standing at the origin, heading +x, scanning every 0.5 s: scans[k] holds scan k's measurements as
 // (range, bearing), each labelled true landmark 0. Its sensor sees 20 m over a half circle (sigma 0.1 m and
 // 0.01 rad). The start is exact; the odometry has the default noise, a few centimetres and about 2 degrees
@@ -58,6 +70,14 @@ inline RunConfig fastslam_config(FilterVersion version, int particles, std::uint
   c.options.seed = seed;
   c.options.threads = threads;
   return c;
+}
+
+// JCBB with 20 particles, filter seed 3: the identity runs of the options below, small enough to repeat for
+// every back end and thread count.
+inline void small_jcbb_run(RunConfig& c) {
+  c.assoc = "jcbb";
+  c.options.particles = 20;
+  c.options.seed = 3;
 }
 
 // Runs the scenario with every map back end on 1 and 2 threads, each run's config set by `configure`, and
