@@ -1,5 +1,7 @@
 // The run options' descriptors: every option reaches result.json's config under its own name, and only there.
 #include "experiments/options/run_options.h"
+#include "experiments/sweep/sweep_spec.h"
+#include "variants/filter_list.h"
 
 #include <gtest/gtest.h>
 
@@ -66,6 +68,19 @@ TEST(RunOptions, TheSweepVariesEveryOptionItDoesNotSetItself) {
   for (const char* own : {"scenario", "out", "filter", "map", "assoc", "particles", "seed", "threads"})
     EXPECT_EQ(std::count(sweepable.begin(), sweepable.end(), own), 0) << own;
   EXPECT_EQ(sweepable.size() + 8, run_option_names().size());
+}
+
+// The filter list is read, not copied: every filter is a sweep's grid.filter value, and every online one is
+// an `arbor run --filter` (and arbor.run filter=) value, while a batch one is refused there.
+TEST(FilterList, EveryListedFilterReachesTheSweepAndTheRunCommand) {
+  for (const FilterEntry& f : kFilters) {
+    const std::string name(f.name);
+    EXPECT_EQ(std::count(known_filters().begin(), known_filters().end(), name), 1) << name;
+    EXPECT_EQ(run_option_error("filter", name).empty(), !f.traits.is_batch) << name;
+    EXPECT_EQ(find_filter(name), &f);
+  }
+  EXPECT_EQ(known_filters().size(), kFilters.size());
+  EXPECT_EQ(find_filter("ekf-before-issue-43"), nullptr);
 }
 
 }  // namespace
