@@ -16,14 +16,28 @@ import pandas as pd  # noqa: E402
 
 import arbor_files  # noqa: E402
 
-PARAMS = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed", "filter", "map",
-          "assoc", "particles", "seed", "threads"]
+
+def _grid_columns():
+    """The sweep's grid columns as (name, type, roles), from the one list the sweep compiles in."""
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                        "experiments", "sweep", "grid_columns.inc")
+    with open(path, encoding="utf-8") as f:
+        return [(name, kind, roles.split()) for name, kind, roles in
+                re.findall(r'^\{"([^"]+)", "([^"]+)", "([^"]*)"\},$', f.read(), re.MULTILINE)]
+
+
+GRID_COLUMNS = _grid_columns()
+PARAMS = [name for name, _, _ in GRID_COLUMNS]
 # The columns that tell two method configurations apart in a figure's legend.
-METHOD = ["filter", "map", "assoc"]
+METHOD = [name for name, _, roles in GRID_COLUMNS if "method" in roles]
 # Everything else a sweep may vary; a figure draws one line per combination that varies in the results.
-CONTEXT = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "particles", "threads"]
+CONTEXT = [name for name, _, roles in GRID_COLUMNS if "context" in roles]
 # The columns that name a scenario: with the seed they identify the smoother's run a filter run compares with.
-SCENARIO = ["dataset", "world", "world_landmarks", "world_steps", "clutter", "world_seed"]
+SCENARIO = [name for name, _, roles in GRID_COLUMNS if "scenario" in roles]
+# The text columns of a row: the grid's, and the run's identity, status and provenance.
+TEXT_COLUMNS = {name for name, kind, _ in GRID_COLUMNS if kind == "text"} | {
+    "key", "status", "error", "scenario", "run_dir", "commit", "host", "compiler", "build", "finished_at",
+    "termination"}
 
 
 def load_results(path):
@@ -44,8 +58,7 @@ def load_results(path):
     for c in df.columns:
         if c in options:
             continue  # option values stay as the child got them ("student-t", "0.95", "true")
-        if c not in ("key", "status", "error", "dataset", "world", "filter", "map", "assoc", "scenario",
-                     "run_dir", "commit", "host", "compiler", "build", "finished_at", "termination"):
+        if c not in TEXT_COLUMNS:
             df[c] = pd.to_numeric(df[c], errors="coerce")
     return df
 

@@ -14,14 +14,19 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/input_error.h"
+#include "experiments/sweep/grid_columns.h"
 
 namespace arbor {
 namespace {
 
+// The grid's columns (grid_columns.inc), then where the run's scenario and files are.
 const std::vector<std::string>& param_columns() {
-  static const std::vector<std::string> names{"dataset", "world", "world_landmarks", "world_steps", "clutter",
-                                              "world_seed", "filter", "map", "assoc", "particles", "seed", "threads",
-                                              "scenario", "run_dir"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const GridColumn& c : kGridColumns) out.emplace_back(c.name);
+    out.insert(out.end(), {"scenario", "run_dir"});
+    return out;
+  }();
   return names;
 }
 
