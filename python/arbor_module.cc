@@ -23,6 +23,7 @@
 #include "experiments/options/simulation_options.h"
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
+#include "variants/filter_list.h"
 #include "variants/registry.h"
 
 namespace py = pybind11;
@@ -351,7 +352,7 @@ class PyFilter {
  public:
   PyFilter(const Scenario& header, const Arguments& arguments)
       : config_(cli::run_config_from_arguments(arguments)),
-        filter_(make_filter(config_.map, config_.assoc, header, config_.options)) {}
+        filter_(make_run_filter(header, config_)) {}  // with its prior map, as arbor.run
 
   void step(double time_s, const Array& control, const Array& ranges, const Array& bearings, bool scan,
             const py::object& truth_pose) {
@@ -464,6 +465,7 @@ PYBIND11_MODULE(_arbor, m) {
   });
   m.def("map_backends", &arbor::map_backend_names, "The map back ends, as --map names them");
   m.def("association_strategies", &arbor::association_names, "The association strategies usable in the filter");
+  m.def("filters", &arbor::online_filter_names, "The filters arbor.run and arbor.Filter run (variants/filter_list.h)");
   bind_scenario(m);
   bind_run(m);
   bind_filter(m);

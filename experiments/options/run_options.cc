@@ -29,6 +29,7 @@ struct RunOptionDescriptor {
   std::function<CLI::Option*(CLI::App&, RunConfig&, RunChoices&)> add;
   std::function<Json(const RunConfig&)> record;
   std::function<void(const RunChoices&, RunConfig&)> apply;
+  bool is_flag = false;  // a switch: --name alone, or --name=true|false
 };
 
 // The config field an option binds: FIELD(options.seed) reads and writes config.options.seed.
@@ -54,7 +55,8 @@ RunOptionDescriptor flag_option(std::string name, Field field, std::string help)
   return {name,
           [=](CLI::App& cmd, RunConfig& c, RunChoices&) { return cmd.add_flag("--" + name, field(c), help); },
           [=](const RunConfig& c) { return Json(field(c)); },
-          {}};
+          {},
+          /*is_flag=*/true};
 }
 
 // One of an enum's names (core/enum_names.h), all of them unless `allowed` narrows them.
@@ -280,7 +282,51 @@ struct RunOptionParser {
 
 }  // namespace
 
+namespace {
+
+// The number of single-character edits between a and b (Levenshtein), for "did you mean".
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// Checks one --name[=value] argument on its own, so that a bad one is reported with its option as the field
+// (arbor.run's keyword, a sweep grid's key) rather than as CLI11's message about the whole command line.
+void check_run_argument(const std::string& argument) {
+  const std::size_t equals = argument.find('=');
+  const std::string name = argument.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
+  const auto& list = run_option_list();
+  const auto it = std::find_if(list.begin(), list.end(), [&](const RunOptionDescriptor& o) { return o.name == name; });
+  if (it == list.end()) {
+    std::string message = fmt::format("'{}' is not an option of `arbor run`", name);
+    const auto closest = std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
+      return edit_distance(name, a.name) < edit_distance(name, b.name);
+    });
+    if (edit_distance(name, closest->name) <= 2) message += fmt::format(" (did you mean '{}'?)", closest->name);
+    throw InputError("", 0, name, message + "; `arbor run --help` lists them");
+  }
+  if (equals == std::string::npos && !it->is_flag)
+    throw InputError("", 0, name, fmt::format("needs a value (--{0}=VALUE, or {0}=VALUE in Python); only switches "
+                                              "such as --relocalize stand alone",
+                                              name));
+  if (std::string error = RunOptionParser().parse({argument}); !error.empty()) throw InputError("", 0, name, error);
+}
+
+}  // namespace
+
 RunConfig run_config_from_arguments(const std::vector<std::string>& arguments) {
+  for (const std::string& a : arguments)
+    if (a.starts_with("--")) check_run_argument(a);
   RunOptionParser parser;
   if (std::string error = parser.parse(arguments); !error.empty()) throw InputError("", 0, "", error);
   apply_run_choices(parser.choices, parser.config);

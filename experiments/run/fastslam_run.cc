@@ -53,11 +53,16 @@ std::vector<Landmark> read_prior_map(const std::string& path) {
 
 }  // namespace
 
+std::unique_ptr<Filter> make_run_filter(const Scenario& scenario, const RunConfig& config) {
+  std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
+  if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
+  return filter;
+}
+
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   const auto wall_start = std::chrono::steady_clock::now();
   prepare_run_directory(config.out_dir);
-  std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
-  if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
+  std::unique_ptr<Filter> filter = make_run_filter(scenario, config);
 
   RunOutput out;
   std::vector<double> step_times;

@@ -5,6 +5,7 @@
 #define ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/fastslam_options.h"
+#include "core/engine/filter.h"
 #include "core/types/landmark.h"
 #include "core/types/scenario.h"
 #include "core/types/step_decisions.h"
@@ -42,6 +44,10 @@ struct RunOutput {
   std::vector<StepDecisions> decisions;  // the best particle's
   std::vector<StepRecord> steps;         // one per scenario step
 };
+
+// The filter a run uses: the config's variants and options, started from its prior map when it names one
+// (arbor.Filter steps the same filter by hand).
+std::unique_ptr<Filter> make_run_filter(const Scenario& scenario, const RunConfig& config);
 
 // Runs the filter over every step of the scenario and computes the metrics; writes the result files when
 // config.out_dir is set. Throws InputError for invalid names or options.

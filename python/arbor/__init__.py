@@ -23,16 +23,11 @@ import numpy as np
 
 import arbor_files  # beside this package in build/python: the reader of the files below, shared with analysis/
 
-from ._arbor import InputError, Scenario, association_strategies, map_backends
+from ._arbor import InputError, Scenario, association_strategies, filters, map_backends
 from . import _arbor
 
 __all__ = ["InputError", "Scenario", "Result", "Filter", "simulate", "run", "smooth", "associate", "sweep",
            "convert", "cli", "executable", "map_backends", "association_strategies", "filters"]
-
-
-def filters():
-    """The filters, as --filter names them."""
-    return ["fastslam1", "fastslam2"]
 
 
 def _arguments(options):

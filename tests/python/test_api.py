@@ -105,6 +105,34 @@ def test_bad_input_raises_input_error_naming_the_field(scenario, tmp_path):
     assert error.value.file == str(bad) and error.value.line > 0 and error.value.field == "range"
 
 
+def test_a_bad_keyword_is_named_as_the_field(scenario, tmp_path):
+    """A misspelt keyword was reported as "--asoc=jcbb", filter=True as "--scenario=- not in {...}" and help=True
+    with CLI11's internal message, each with an empty field; a garbage prior map passed to Filter was ignored."""
+    for options, field, message in [(dict(asoc="jcbb"), "asoc", "did you mean 'assoc'"),
+                                    (dict(filter=True), "filter", "needs a value"),
+                                    (dict(help=True), "help", "not an option"),
+                                    (dict(chi2=2), "chi2", "chi2")]:
+        with pytest.raises(arbor.InputError, match=message) as error:
+            arbor.run(scenario, **options)
+        assert error.value.field == field, options
+        with pytest.raises(arbor.InputError) as error:
+            arbor.Filter(scenario, **options)
+        assert error.value.field == field, options
+    garbage = tmp_path / "map.csv"
+    garbage.write_text("not a map\n")
+    with pytest.raises(arbor.InputError) as error:
+        arbor.Filter(scenario, prior_map=str(garbage), **RUN)
+    assert error.value.file == str(garbage) and error.value.line == 1
+
+
+def test_every_listed_filter_runs(scenario):
+    """arbor.filters() is the filter list of the build (variants/filter_list.h), as `arbor run --filter` offers it."""
+    help_text = arbor.cli("run", "--help").stdout
+    for name in arbor.filters():
+        assert name in help_text
+        assert arbor.run(scenario, **dict(RUN, filter=name, assoc="known", particles=5)).config["filter"] == name
+
+
 def read_text_with_a_bad_range(scenario, tmp_path):
     scenario.save(tmp_path / "good.scn")
     lines = (tmp_path / "good.scn").read_text().splitlines(keepends=True)
