@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <fmt/core.h>
@@ -13,6 +14,7 @@
 #include "core/io/input_error.h"
 #include "experiments/sweep/results_log.h"
 #include "experiments/sweep/sweep_manifest.h"
+#include "experiments/sweep/sweep_spec.h"
 
 namespace arbor {
 namespace {
@@ -41,6 +43,7 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
   std::optional<SweepManifest> first;
   std::string first_dir;
   std::map<std::string, std::pair<ResultRow, std::string>> by_key;  // the row, and the file:line it came from
+  std::set<std::string> grid;  // the run keys of the first input's spec.toml (empty: no spec kept there)
   // Adds a directory's rows, one per run key: a finished ("ok") row wins over a failed one. Two finished rows
   // of one key must agree on every result (runs are deterministic); they may differ in timing and provenance.
   const auto fold = [&](const std::string& dir) {
@@ -51,6 +54,10 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
       ResultRow& row = rows[i];
       const std::string key = row["key"].get<std::string>();
       const std::string where = fmt::format("{}:{}", path, lines[i]);
+      // A row of another grid (an edited file, or a results file copied in) would be counted as a grid run
+      // and report "13 of 12 grid runs present".
+      if (!grid.empty() && !grid.count(key))
+        throw InputError(path, lines[i], "key", fmt::format("run {} is not in the sweep's grid ({}/spec.toml)", key, first_dir));
       const auto it = by_key.find(key);
       if (it == by_key.end()) {
         by_key.emplace(key, std::make_pair(std::move(row), where));
@@ -76,6 +83,8 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
     if (!first) {
       first = manifest;
       first_dir = dir;
+      if (std::filesystem::exists(dir + "/spec.toml"))
+        for (const RunParams& run : read_sweep_spec(dir + "/spec.toml").runs) grid.insert(run.key());
     } else if (manifest->spec_hash != first->spec_hash || manifest->columns != first->columns) {
       throw InputError(dir + "/" + kSweepManifest, 0, "spec_hash",
                        fmt::format("comes from another spec (hash {}) than {} (hash {}); refusing to merge different grids",

@@ -3,6 +3,7 @@
 // the unsharded sweep; a malformed spec fails before any run starts.
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <set>
@@ -154,6 +155,24 @@ TEST_F(SweepEndToEnd, MergeRefusesShardsOfDifferentSpecs) {
   EXPECT_NE(read_text(dir / "m.log").find("another spec"), std::string::npos) << read_text(dir / "m.log");
   // Resuming into a directory of another sweep is refused the same way.
   EXPECT_EQ(run_to_end({binary_, "sweep", dir / "other.toml", "--out", *scratch_ / "reference"}, dir / "r.log"), 2);
+}
+
+// A row whose key is not in the spec's grid (an edited file, rows of another sweep pasted in) was counted as a
+// grid run: "9 of 8 grid runs present". Merge names its file, line and field instead.
+TEST_F(SweepEndToEnd, MergeRefusesARowOutsideTheGrid) {
+  ScratchDir dir("outside");
+  std::filesystem::copy(*scratch_ / "reference", dir / "edited", std::filesystem::copy_options::recursive);
+  const std::string jsonl = (dir / "edited") + "/results.jsonl";
+  std::string text = read_text(jsonl);
+  const std::string first_row = text.substr(0, text.find('\n') + 1);
+  std::string stray = first_row;
+  stray.replace(stray.find("\"key\":\"") + 7, 0, "elsewhere-");
+  write_text(jsonl, text + stray);
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+  EXPECT_EQ(run_to_end({binary_, "merge", *scratch_ / "reference", dir / "edited", "--out", dir / "merged"}, dir / "m.log"), 2);
+  const std::string log = read_text(dir / "m.log");
+  EXPECT_NE(log.find(fmt::format("results.jsonl:{}: field 'key'", lines)), std::string::npos) << log;
+  EXPECT_NE(log.find("not in the sweep's grid"), std::string::npos) << log;
 }
 
 // Runs are deterministic, so two finished rows of one run key that disagree on a result are a conflict (shards
