@@ -197,6 +197,7 @@ Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const Be
   StepMergeOptions merge;
   merge.start_ms = std::min(controls.front().time_ms, scans.empty() ? INT64_MAX : scans.front().time_ms);
   merge.before_first = {merge.start_ms, 0.0, controls.front().u2};
+  merge.controls_path = join_path(dir, "csv/dead_reckoning.csv");
   s.start_time_s = merge.start_ms / 1000.0;
   s.steps = merge_controls_and_scans(controls, scans, merge);
 

@@ -1,6 +1,10 @@
 // Time-ordered merge of control readings and scans into steps (zero-order hold of the controls).
 #include "experiments/loaders/step_merger.h"
 
+#include <fmt/core.h>
+
+#include "core/io/input_error.h"
+
 namespace arbor {
 
 std::vector<ScenarioStep> merge_controls_and_scans(const std::vector<ControlSample>& controls,
@@ -25,6 +29,12 @@ std::vector<ScenarioStep> merge_controls_and_scans(const std::vector<ControlSamp
     // dt from the integer clock, so that split intervals add up exactly to the unsplit one.
     step.control = {in_force.u1, in_force.u2, static_cast<double>(t - previous_ms) / 1000.0};
     if (scan_ms == t) {
+      if (static_cast<double>(t - in_force.time_ms) > 1000.0 * o.max_control_gap_s)
+        throw InputError(o.controls_path, in_force.line, "time",
+                         fmt::format("no control reading from t = {:.3f} s to a scan at t = {:.3f} s (over {} s): the "
+                                     "file ends or has a hole while the scans go on; converting would hold the last "
+                                     "reading throughout",
+                                     to_seconds(in_force.time_ms), to_seconds(t), o.max_control_gap_s));
       step.has_scan = true;
       step.measurements = scans[next_scan++].measurements;
     }

@@ -78,6 +78,7 @@ std::vector<ControlSample> read_odometry(const std::string& path, LoadReport* re
     c.time_ms = seconds_to_ms(time_field(in, 0, "time"));
     c.u1 = UtiasNoiseDefaults::kSpeedScale * control_field(in, 1, "v");
     c.u2 = UtiasNoiseDefaults::kTurnRateScale * control_field(in, 2, "omega");
+    c.line = in.line_number();
     // Known dirty: robots 2-5 of Dataset 6 log a few commands twice in one millisecond. The later one is
     // the command in force, so it replaces the earlier.
     if (order.check(in, c.time_ms, "time")) {
@@ -194,6 +195,7 @@ Scenario load_utias_mrclam(const std::string& dir, const UtiasOptions& options, 
   merge.start_ms = start_ms;
   merge.end_ms = end_ms;
   merge.origin_ms = static_cast<double>(start_ms);
+  merge.controls_path = join_path(dir, prefix + "Odometry.dat");
   s.steps = merge_controls_and_scans(controls, scans, merge);
   for (auto& step : s.steps) {
     step.truth_pose = interpolate(truth, seconds_to_ms(step.time_s) + start_ms, max_gap_ms);

@@ -37,6 +37,8 @@ std::vector<TimedScan> read_trees(const std::string& path, LoadReport* report) {
     if (!same_scan) scans.push_back({t, {}});
     scans.back().measurements.push_back(m);
   }
+  // An empty (or all-comment) file converted to a scenario of odometry alone, exit 0.
+  if (scans.empty()) throw InputError(path, in.line_number(), "", "no tree detections");
   report->add("tree detections", 0);
   for (const auto& s : scans) report->add("tree detections", static_cast<std::int64_t>(s.measurements.size()));
   return scans;
@@ -86,6 +88,7 @@ Scenario load_victoria_park(const std::string& dir, LoadReport* report, const Vi
   merge.start_ms = std::min(controls.front().time_ms, scans.empty() ? INT64_MAX : scans.front().time_ms);
   merge.origin_ms = static_cast<double>(kVictoriaParkOriginMs);
   merge.before_first = {merge.start_ms, 0.0, controls.front().u2};  // standing still until the first reading
+  merge.controls_path = join_path(dir, VictoriaParkFiles::kDeadReckoning);
   s.start_time_s = (merge.start_ms - kVictoriaParkOriginMs) / 1000.0;
   s.steps = merge_controls_and_scans(controls, scans, merge);
 

@@ -154,6 +154,15 @@ std::vector<HostileCase> hostile_cases() {
        dataset_edit("acfr_car_park", "csv/gps.csv", R"(^([0-9.]+),[^,\n]+)", "$1,1e300"),
        "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn", 2,
        "gps.csv" + field_re + "x_east_m'"},
+      // A control file cut mid-run converted with exit 0: its last reading was held through the remaining scans.
+      {"nan_output", "car_park_dead_reckoning_cut",
+       dataset_edit("acfr_car_park", "csv/dead_reckoning.csv", R"(^49\.[\s\S]*)", ""),
+       "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn", 2,
+       "dead_reckoning.csv" + field_re + "time'"},
+      {"nan_output", "victoria_park_no_detections",
+       dataset_edit("victoria_park", "leung_extracted/measurements.dat", R"([\s\S]*)", ""),
+       "{arbor} convert --from victoria-park --input {dir}/victoria_park --out {dir}/out/v.scn", 2,
+       "measurements.dat: no tree detections"},
       // 3. Writers that emitted files their own reader rejects: now refused, and nothing written.
       {"writers", "simulate_sigma_range_zero", no_setup, kSimulate + "--sigma-range 0", 2, "field 'sigma_range'"},
       {"writers", "simulate_fov_100", no_setup, kSimulate + "--fov 100", 2, "field 'fov'"},
