@@ -40,12 +40,15 @@ std::map<std::int64_t, std::int32_t> read_barcodes(const std::string& path) {
 std::vector<TruthLandmark> read_landmarks(const std::string& path, const std::set<std::int32_t>& subjects) {
   TextReader in(path);
   std::vector<TruthLandmark> landmarks;
+  std::map<std::int64_t, int> line_of;  // a repeated subject was found only when the scenario was written
   while (in.next()) {
     in.expect_fields(5, 5, "landmark ground truth");
     const std::int64_t id = in.integer(0, "subject");
     // Checked as read: a cast first made 4294967302 the subject 6.
     if (id < 1 || id > INT32_MAX || !subjects.count(static_cast<std::int32_t>(id)))
       in.fail("subject", fmt::format("landmark subject {} has no barcode in Barcodes.dat", id));
+    if (const auto [it, fresh] = line_of.emplace(id, in.line_number()); !fresh)
+      in.fail("subject", fmt::format("landmark subject {} is listed twice (first at line {})", id, it->second));
     landmarks.push_back({static_cast<std::int32_t>(id), {coordinate_field(in, 1, "x"), coordinate_field(in, 2, "y")}});
     non_negative_within(in, 3, "x_std", scenario_limits::kMaxSigma);
     non_negative_within(in, 4, "y_std", scenario_limits::kMaxSigma);

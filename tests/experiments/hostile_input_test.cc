@@ -248,6 +248,11 @@ std::vector<HostileCase> hostile_cases() {
       {"messages", "prune_nan", no_setup, kRun + "--prune nan", 2, "--prune: must be a finite number"},
       {"messages", "max_gps_speed_nan", no_setup, "{arbor} convert --from victoria-park --out {dir}/out/v.scn --max-gps-speed nan", 2,
        "--max-gps-speed: must be a finite number"},
+      // A repeated landmark row was reported against the scenario being written, not the file that held it.
+      {"messages", "utias_landmark_listed_twice",
+       dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*6\s[^\n]*\n))", "$1$1"),
+       "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
+       "Landmark_Groundtruth.dat" + field_re + "subject': landmark subject 6 is listed twice"},
       {"messages", "utias_landmark_id_past_32_bits",
        dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*)6(\s))", "$14294967302$2"),
        "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
