@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -40,6 +41,11 @@ int run_command_line(int argc, char** argv) {
   } catch (const InputError& e) {
     fmt::print(stderr, "arbor: error: {}\n", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    // What the memory checks (core/io/memory_budget.h) did not foresee: the map grows with the run.
+    fmt::print(stderr, "arbor: failed: out of memory; a run needs more with --particles, a larger map (--landmarks) "
+                       "or the naive back end (--map naive copies every particle's map)\n");
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "arbor: failed: {}\n", e.what());
     return 1;

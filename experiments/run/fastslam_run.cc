@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "core/io/atomic_file.h"
+#include "core/io/memory_budget.h"
 #include "core/io/trajectory_io.h"
 #include "core/metrics/decision_score.h"
 #include "core/metrics/run_statistics.h"
@@ -54,6 +55,9 @@ std::vector<Landmark> read_prior_map(const std::string& path) {
 }  // namespace
 
 std::unique_ptr<Filter> make_run_filter(const Scenario& scenario, const RunConfig& config) {
+  // 3.3 KB a particle before any landmark (peak RSS 344 MB at 10^5 particles on a 5-step world, tree map):
+  // 10^6 particles on a small machine ended in std::bad_alloc.
+  require_memory(config.options.particles, 3000.0, "particles", "particles");
   std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
   if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
   return filter;

@@ -249,6 +249,12 @@ std::vector<HostileCase> hostile_cases() {
       {"messages", "max_gps_speed_nan", no_setup, "{arbor} convert --from victoria-park --out {dir}/out/v.scn --max-gps-speed nan", 2,
        "--max-gps-speed: must be a finite number"},
       // A repeated landmark row was reported against the scenario being written, not the file that held it.
+      // Sizes no machine holds: refused before anything is allocated, naming the option (std::bad_alloc before).
+      {"blowups", "run_with_two_billion_particles", no_setup, kRunBase + "--particles 2000000000", 2,
+       "field 'particles': 2000000000 particles need at least"},
+      {"blowups", "simulate_two_billion_landmarks", no_setup,
+       "{arbor} simulate --landmarks 2000000000 --steps 5 --out {dir}/out/s.scn", 2,
+       "field 'landmarks': 2000000000 landmarks need at least"},
       {"messages", "utias_landmark_listed_twice",
        dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*6\s[^\n]*\n))", "$1$1"),
        "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
