@@ -32,10 +32,11 @@ bool write_all(int fd, std::string_view text) {
   return ::fsync(fd) == 0 || errno == EINVAL;  // EINVAL: a special file (a pipe, /dev/null) cannot sync
 }
 
-// Removes path's temporaries (path.tmp.PID) that a killed writer left: those whose process is gone. A live
-// writer's temporary stays (a pid reused by another process only keeps a stale file a while longer).
-void remove_orphaned_temporaries(const std::filesystem::path& target) {
-  const std::string prefix = target.filename().string() + ".tmp.";
+}  // namespace
+
+void remove_orphaned_temporaries(const std::string& path, std::string_view tag) {
+  const std::filesystem::path target(path);
+  const std::string prefix = target.filename().string() + "." + std::string(tag) + ".";
   const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
@@ -49,12 +50,10 @@ void remove_orphaned_temporaries(const std::filesystem::path& target) {
   }
 }
 
-}  // namespace
-
 void write_file_atomically(const std::string& path, std::string_view text) {
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
-  remove_orphaned_temporaries(target);
+  remove_orphaned_temporaries(path, "tmp");
   const std::string temp = fmt::format("{}.tmp.{}", path, ::getpid());
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) throw EnvironmentError(path, fmt::format("cannot write: {}", std::strerror(errno)));

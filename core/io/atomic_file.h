@@ -12,6 +12,10 @@ namespace arbor {
 // temporary that a killed writer left (path.tmp.PID, its process gone) is removed by the next write of path.
 void write_file_atomically(const std::string& path, std::string_view text);
 
+// Removes the temporaries path.TAG.PID that a killed writer left: those whose process is gone. A live
+// writer's temporary stays (a pid reused by another process only keeps a stale file a while longer).
+void remove_orphaned_temporaries(const std::string& path, std::string_view tag);
+
 // A run's output directory: result.json is written last, so its presence marks a finished run. A rerun
 // into the same directory removes the old one before it starts; were it left, a run that fails half-way
 // would leave the old result.json beside new trajectory and map files, and look finished.

@@ -252,6 +252,8 @@ void write_scenario(const Scenario& s, const std::string& path) {
   emit("end {}\n", s.steps.size());
   // A writer never emits a file its reader rejects (a simulation asked for zero noise, a converter fed a
   // landmark at 1e200): the text is read back under a temporary name first, and moved into place only then.
+  // A writer killed while it read back (or out of memory) left its copy, hundreds of MB: the next one removes it.
+  remove_orphaned_temporaries(path, "check");
   const std::string checked = fmt::format("{}.check.{}", path, static_cast<long>(getpid()));
   write_file_atomically(checked, out);
   try {

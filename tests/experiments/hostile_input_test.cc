@@ -334,6 +334,11 @@ TEST(HostileInputTemporaries, AKilledWritersTemporaryIsRemovedByTheNextRun) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out" / ("result.json.tmp." + dead_pid)));
   EXPECT_TRUE(fs::exists(dir / "out" / ("map.csv.tmp." + std::to_string(::getpid()))));
+  // The scenario writer's read-back copy (NAME.check.PID) of a writer killed while it read, hundreds of MB for
+  // a large world, goes the same way.
+  write_text(dir / ("w.scn.check." + dead_pid), "partial");
+  ASSERT_EQ(testing::run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out " + (dir / "w.scn").string()).exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir / ("w.scn.check." + dead_pid)));
 }
 
 }  // namespace
