@@ -80,8 +80,14 @@ def read_rows(path):
     if path.endswith(".csv"):
         with open(path, newline="", encoding="utf-8") as f:
             return list(csv.DictReader(f))
-    with open(path, encoding="utf-8") as f:
-        lines = f.read().split("\n")[:-1]
+    with open(path, "rb") as f:
+        data = f.read()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        raise ValueError(f"{path}:{line}: byte {e.start} is not UTF-8 text") from None
+    lines = text.split("\n")[:-1]
     rows = []
     for number, line in enumerate(lines, 1):
         if not line.strip():

@@ -46,7 +46,10 @@ def load_results(path):
     last row (what --retry-failed appends)."""
     path = arbor_files.results_file(path)
     if path.endswith(".csv"):
-        df = pd.read_csv(path)  # arbor_files gives the CSV's cells as text; pandas types its columns
+        try:
+            df = pd.read_csv(path)  # arbor_files gives the CSV's cells as text; pandas types its columns
+        except (ValueError, UnicodeDecodeError) as e:  # pandas' parser errors are ValueErrors without the file
+            raise ValueError(f"{path}: not a results table ({e})") from None
     else:
         df = pd.DataFrame(arbor_files.read_rows(path))
     if df.empty:
