@@ -16,6 +16,7 @@ of the same build (`arbor.executable()`) and read back its files.
 
 import json
 import os
+import re
 import subprocess
 import tempfile
 
@@ -178,8 +179,25 @@ def cli(*args, check=True):
     proc = subprocess.run([executable(), *map(str, args)], capture_output=True, text=True)
     if check and proc.returncode != 0:
         message = proc.stderr.strip().removeprefix("arbor: error: ").removeprefix("arbor: failed: ")
-        raise (InputError if proc.returncode == 2 else RuntimeError)(message)
+        if proc.returncode != 2:
+            raise RuntimeError(message)
+        raise _input_error(message)
     return proc
+
+
+# The program's error line, as core/io/input_error.h writes it: [FILE[:LINE]: ][field 'NAME': ]MESSAGE, or
+# CLI11's --option: MESSAGE.
+_ERROR_LINE = re.compile(r"^(?:(?P<file>[^\n]*?)(?::(?P<line>\d+))?: )?field '(?P<field>[^']*)': |^(?P<option>--[\w-]+): ")
+
+
+def _input_error(message):
+    """InputError with the file, line and field the program's message names, as the in-process calls give them."""
+    error = InputError(message)
+    match = _ERROR_LINE.match(message)
+    error.file = (match.group("file") or "") if match else ""
+    error.line = int(match.group("line") or 0) if match else 0
+    error.field = (match.group("field") or (match.group("option") or "").lstrip("-")) if match else ""
+    return error
 
 
 def _scenario_path(scenario, tmp):

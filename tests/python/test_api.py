@@ -125,6 +125,19 @@ def test_a_bad_keyword_is_named_as_the_field(scenario, tmp_path):
     assert error.value.file == str(garbage) and error.value.line == 1
 
 
+def test_the_program_backed_calls_name_file_line_and_field(scenario, tmp_path):
+    """arbor.smooth, convert and the other calls that run the program raised InputError with its message only;
+    they now carry the file, line and field it names, as the in-process calls do."""
+    bad = tmp_path / "bad.scn"
+    bad.write_text(read_text_with_a_bad_range(scenario, tmp_path))
+    with pytest.raises(arbor.InputError) as error:
+        arbor.smooth(bad)
+    assert error.value.file == str(bad) and error.value.line > 0 and error.value.field == "range"
+    with pytest.raises(arbor.InputError) as error:
+        arbor.cli("simulate", "--landmarks", "0", "--out", tmp_path / "s.scn")
+    assert error.value.field == "landmarks", str(error.value)
+
+
 def test_every_listed_filter_runs(scenario):
     """arbor.filters() is the filter list of the build (variants/filter_list.h), as `arbor run --filter` offers it."""
     help_text = arbor.cli("run", "--help").stdout
