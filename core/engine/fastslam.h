@@ -17,7 +17,6 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -26,15 +25,17 @@
 #include "core/association/association_problem.h"
 #include "core/check.h"
 #include "core/engine/fastslam_options.h"
+#include "core/engine/landmark_ekf.h"
 #include "core/engine/map_concept.h"
+#include "core/engine/measurement_likelihood.h"
 #include "core/engine/persistent_history.h"
 #include "core/engine/resample_move.h"
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
-#include "core/types/box2.h"
+#include "core/engine/sensor_view.h"
+#include "core/engine/touched_landmark.h"
 #include "core/types/scenario.h"
 #include "core/math/chi_square.h"
-#include "core/math/covariance_floor.h"
 #include "core/models/motion_model.h"
 #include "core/models/range_bearing_model.h"
 
@@ -92,13 +93,13 @@ class FastSlam {
  public:
   // relocalizer: needed (non-empty) when options.relocalize is set.
   FastSlam(const Scenario& scenario, const FastSlamOptions& options, Relocalizer relocalizer = {})
-      : options_(options), motion_(scenario.motion), sensor_(scenario.sensor), strategy_(options.association),
+      : options_(options), motion_(scenario.motion), sensor_(scenario.sensor), R_(sensor_.R()), view_(sensor_, options),
+        likelihood_(options.likelihood, options.student_dof), ekf_(R_, likelihood_), strategy_(options.association),
         arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic),
         relocalizer_(std::move(relocalizer)) {
     const std::string why = options.validate();
     ARBOR_CHECK(why.empty(), "{}", why);
     ARBOR_CHECK(!options.relocalize || relocalizer_, "relocalize is set but no relocalizer was given");
-    R_ = sensor_.R();
     const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
     const double gate = chi_square_quantile(options.association.gate_probability, 2);
     log_likelihood_unpaired_ = -0.5 * gate - std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
@@ -108,8 +109,6 @@ class FastSlam {
     keep_localities_ = Assoc::kTraits.reads_localities || options.relocalize;  // the relocaliser's tree reads them
     loop_drift_ = Vec3(options.loop_drift_m, options.loop_drift_m, 0.0).cwiseAbs2().asDiagonal();
     loop_gate_ = gate;
-    const double nu = options.student_dof;
-    student_log_norm_ = std::lgamma(0.5 * (nu + 2.0)) - std::lgamma(0.5 * nu) - std::log(nu * kPi);
     last_time_s_ = scenario.start_time_s;
     particles_.resize(options.particles);
     for (int i = 0; i < options.particles; ++i) {
@@ -255,12 +254,6 @@ class FastSlam {
     int step_paired_settled = 0;  // this scan's measurements paired with a settled landmark (relocalisation)
   };
 
-  // A landmark that this scan updates (paired) or creates (new): a working copy, written back once.
-  struct Touched {
-    Landmark landmark;
-    bool is_new = false;
-    bool was_confirmed = false;  // before this scan's update
-  };
   struct Scratch {
     std::vector<Landmark> nearby;              // landmarks in the query box, ascending id
     std::vector<int> candidate_of;             // problem candidate index -> index into nearby
@@ -268,7 +261,7 @@ class FastSlam {
     AssociationResult result;
     typename Assoc::Scratch strategy;
     std::vector<LandmarkId> decision;          // per measurement
-    std::vector<Touched> touched;
+    std::vector<TouchedLandmark> touched;
     std::vector<int> touched_of;               // per measurement: index into touched, or -1
     std::vector<LandmarkId> erased;            // removed by this scan's negative evidence
     std::vector<LandmarkId> redirected;        // per measurement: the alias it was paired through, or kNoLandmark
@@ -323,52 +316,17 @@ class FastSlam {
   double move_log_target(const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
                          std::vector<std::vector<LandmarkEstimate>>* before) const {
     const auto update = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
-      return e ? update_landmark_estimate(pose, z, e->id, &e->mean, &e->cov) : 0.0;
+      return e ? ekf_.update(pose, z, e->id, &e->mean, &e->cov) : 0.0;
     };
-    const auto start = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
-      e->mean = range_bearing_inverse(pose, z);
-      e->cov = range_bearing_initial_covariance(pose, z, R_);
-      floor_covariance(&e->cov);
-    };
+    const auto start = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) { ekf_.start(pose, z, &e->mean, &e->cov); };
     return window_log_target(w, poses, update, start, after, before);
   }
 
-  // How far beyond the sensor's view a pose drawn from N(pose, P) could see: three standard deviations of
-  // the position (range) and of the heading (bearing). Zero for a sampled pose.
-  struct ViewMargin {
-    double range_m = 0.0, bearing_rad = 0.0;
-  };
-  static ViewMargin uncertainty_margin(const Mat3& P) {
-    return {3.0 * std::sqrt(std::max({P(0, 0), P(1, 1), 0.0})), 3.0 * std::sqrt(std::max(P(2, 2), 0.0))};
-  }
-
-  // Where the sensor could see: the landmarks in this box are the association candidates.
-  Box2 query_box(const Pose2& pose, double extra_reach_m = 0.0) const {
-    const double reach = sensor_.max_range_m + options_.candidate_range_margin_m + extra_reach_m;
-    return {pose.position() - Vec2(reach, reach), pose.position() + Vec2(reach, reach)};
-  }
-  bool in_candidate_view(const Vec2& z, const ViewMargin& margin) const {
-    return z.x() <= sensor_.max_range_m + options_.candidate_range_margin_m + margin.range_m &&
-           std::abs(z.y()) <= 0.5 * sensor_.fov_rad + options_.candidate_bearing_margin_rad + margin.bearing_rad;
-  }
   // Whether a landmark predicted at z is an association candidate. The oracle must find the landmark an id
   // names wherever the estimate puts it: were it left out, a second landmark would start for the same id.
   // Every other strategy sees only what could be in view.
   bool is_candidate(const Vec2& z, const ViewMargin& margin) const {
-    return Assoc::kTraits.uses_ground_truth || in_candidate_view(z, margin);
-  }
-  bool in_evidence_view(const Vec2& z) const {
-    return z.x() <= sensor_.max_range_m - options_.evidence_range_margin_m &&
-           z.x() >= sensor_.min_range_m + options_.evidence_range_margin_m &&
-           std::abs(z.y()) <= 0.5 * sensor_.fov_rad - options_.evidence_bearing_margin_rad;
-  }
-
-  // Draws from N(mean, cov) with a symmetric square root, robust to a semi-definite covariance.
-  static Vec3 sample_gaussian(const Vec3& mean, const Mat3& cov, RandomStream& rng) {
-    Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (cov + cov.transpose()));
-    const Vec3 n = draw_vec3([&] { return rng.normal(); });
-    const Vec3 scaled = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().cwiseProduct(n);
-    return mean + eig.eigenvectors() * scaled;
+    return Assoc::kTraits.uses_ground_truth || view_.in_candidate_view(z, margin);
   }
 
   // One particle's step, along Montemerlo et al. 2003 (FastSLAM 2.0, §3-4), in two parts: predict through
@@ -407,21 +365,21 @@ class FastSlam {
     gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
     redirect_aliases(p, s);
-    collect_touched(p, step.measurements, s);
+    collect_touched(p, s);
     std::vector<LandmarkEstimate> before;
     if (moves_)
-      for (const Touched& t : s.touched) before.push_back({t.landmark.id, t.landmark.mean, t.landmark.cov});
+      for (const TouchedLandmark& t : s.touched) before.push_back({t.landmark.id, t.landmark.mean, t.landmark.cov});
     if (options_.relocalize)
       for (int t : s.touched_of) p.step_paired_settled += t >= 0 && settled(s.touched[t].landmark);
     double log_weight = fastslam2 ? propose_and_draw(p, step.measurements, index, s) : 0.0;
     log_weight += update_landmarks(p, step.measurements, s, /*weight=*/!fastslam2);
     log_weight += add_new_landmarks(p, step.measurements, s);
     if (close_loops_) find_aliases(p, s);
-    write_touched(p, s);
+    write_touched(s.touched, keep_localities_, &p.map);  // locality sets only where something reads them
     apply_negative_evidence(p, s, s.touched);
     p.log_weight += log_weight;
     record_pose(p, step);
-    record_decisions(p, step.measurements.size(), s);
+    p.decisions.push(applied_decisions(step_index_, s.touched, s.touched_of, s.erased));
     if (moves_) record_move_scan(p, std::move(before), s, &step.measurements);
   }
 
@@ -457,41 +415,14 @@ class FastSlam {
     p.move.history_entries_since_draw += moves_ && !step.has_scan;
   }
 
-  // The measurement's log-likelihood under innovation covariance S, and the factor by which the update should
-  // scale its noise: 1 for the Gaussian, (nu + d^2) / (nu + 2) for the Student-t.
-  double log_likelihood(const Vec2& innovation, const Mat2& S, double* noise_scale) const {
-    const double d2 = innovation.dot(S.ldlt().solve(innovation));
-    const double log_det = std::log(S.determinant());
-    if (options_.likelihood == Likelihood::kGaussian) {
-      *noise_scale = 1.0;
-      return -0.5 * d2 - std::log(2.0 * kPi) - 0.5 * log_det;
-    }
-    const double nu = options_.student_dof;
-    *noise_scale = (nu + d2) / (nu + 2.0);
-    return student_log_norm_ - 0.5 * log_det - 0.5 * (nu + 2.0) * std::log1p(d2 / nu);
-  }
-
-  // s.touched: a working copy of every landmark the decisions pair (the map is written once, at the end);
-  // s.touched_of: per measurement, its index there or -1.
-  void collect_touched(const ParticleState& p, const std::vector<Measurement>& measurements, Scratch& s) const {
-    s.touched.clear();
-    s.touched_of.assign(measurements.size(), -1);
-    for (std::size_t k = 0; k < measurements.size(); ++k) {
-      const LandmarkId id = s.decision[k];
-      if (id < 0) continue;
-      int t = 0;
-      while (t < static_cast<int>(s.touched.size()) && s.touched[t].landmark.id != id) ++t;
-      if (t == static_cast<int>(s.touched.size())) {
-        const Landmark* lm = find_landmark(p, s, id);
-        ARBOR_CHECK(lm != nullptr, "association paired with landmark {} that the map does not hold", id);
-        s.touched.push_back({*lm, false, lm->confirmed});
-      }
-      s.touched_of[k] = t;
-    }
-    // FastSlamOptions::provisional_steer_min: every pairing of the scan is provisional, and there are enough.
+  // The scan's working copies of the landmarks it pairs (core/engine/touched_landmark.h), and whether its
+  // provisional pairings steer it (FastSlamOptions::provisional_steer_min: every pairing of the scan is
+  // provisional, and there are enough).
+  void collect_touched(const ParticleState& p, Scratch& s) const {
+    arbor::collect_touched(s.decision, p.map, s.nearby, &s.touched, &s.touched_of);
     const int min = options_.provisional_steer_min;
     s.provisional_steers = min > 0 && static_cast<int>(s.touched.size()) >= min &&
-                           std::none_of(s.touched.begin(), s.touched.end(), [](const Touched& t) { return t.was_confirmed; });
+                           std::none_of(s.touched.begin(), s.touched.end(), [](const TouchedLandmark& t) { return t.was_confirmed; });
   }
 
   // Montemerlo et al. 2003, §3: the proposal N(mu, Sigma) folds each paired measurement into the prediction
@@ -504,7 +435,7 @@ class FastSlam {
     Mat3 Sigma = p.pose_covariance;
     for (std::size_t k = 0; k < measurements.size(); ++k) {
       if (s.touched_of[k] < 0) continue;
-      const Touched& t = s.touched[s.touched_of[k]];
+      const TouchedLandmark& t = s.touched[s.touched_of[k]];
       if (!steers_pose(t, s)) {
         log_weight += log_likelihood_unpaired_;
         continue;
@@ -517,7 +448,7 @@ class FastSlam {
       const Vec2 nu = range_bearing_innovation(measurements[k].z(), z_hat);
       double scale = 1.0;
       const Mat3 pose_part = redirected(s, k) ? Mat3(Sigma + loop_drift_) : Sigma;
-      log_weight += log_likelihood(nu, H_x * pose_part * H_x.transpose() + landmark_part + R_, &scale);
+      log_weight += likelihood_(nu, H_x * pose_part * H_x.transpose() + landmark_part + R_, &scale);
       const Mat2 Q = landmark_part + scale * R_;
       const Mat2 S = H_x * Sigma * H_x.transpose() + Q;
       const Mat32 K = Sigma * H_x.transpose() * S.inverse();
@@ -535,7 +466,7 @@ class FastSlam {
   // FastSlamOptions::pose_from_confirmed: a pairing with a landmark that was provisional before this scan
   // counts, for the pose and the weight, as an unpaired measurement, unless the scan pairs enough of them
   // (FastSlamOptions::provisional_steer_min).
-  bool steers_pose(const Touched& t, const Scratch& s) const {
+  bool steers_pose(const TouchedLandmark& t, const Scratch& s) const {
     return !pose_from_confirmed_ || t.was_confirmed || s.provisional_steers;
   }
 
@@ -545,10 +476,9 @@ class FastSlam {
     double log_weight = 0.0;
     for (std::size_t k = 0; k < measurements.size(); ++k) {
       if (s.touched_of[k] < 0) continue;
-      Touched& t = s.touched[s.touched_of[k]];
+      TouchedLandmark& t = s.touched[s.touched_of[k]];
       Landmark& lm = t.landmark;
-      const double ll =
-          update_landmark_estimate(p.pose, measurements[k].z(), lm.id, &lm.mean, &lm.cov, redirected(s, k) ? &loop_drift_ : nullptr);
+      const double ll = ekf_.update(p.pose, measurements[k].z(), lm.id, &lm.mean, &lm.cov, redirected(s, k) ? &loop_drift_ : nullptr);
       if (weight) log_weight += steers_pose(t, s) ? ll : log_likelihood_unpaired_;
       lm.log_odds = static_cast<float>(std::min<double>(options_.log_odds_max, lm.log_odds + options_.log_odds_hit));
       lm.confirmed |= lm.log_odds >= options_.log_odds_confirm;
@@ -557,30 +487,6 @@ class FastSlam {
       if (!std::isnan(sig)) lm.signature = std::isnan(lm.signature) ? sig : lm.signature + 0.2f * (sig - lm.signature);
     }
     return log_weight;
-  }
-
-  // One landmark EKF update at a known pose (Montemerlo 2002, eq. 8-11; Joseph form); returns the measurement's
-  // log-likelihood, whose innovation covariance gains pose_drift's where a loop closure allows drift.
-  double update_landmark_estimate(const Pose2& pose, const Vec2& z, LandmarkId id, Vec2* mean, Mat2* cov,
-                                  const Mat3* pose_drift = nullptr) const {
-    Mat2 H_m;
-    Mat23 H_x;
-    const Vec2 z_hat = range_bearing_predict(pose, *mean, &H_m, pose_drift ? &H_x : nullptr);
-    const Vec2 nu = range_bearing_innovation(z, z_hat);
-    double scale = 1.0;
-    Mat2 S = H_m * *cov * H_m.transpose();
-    if (pose_drift) S += H_x * *pose_drift * H_x.transpose();
-    const double ll = log_likelihood(nu, S + R_, &scale);
-    const Mat2 R = scale * R_;
-    const Mat2 Q = H_m * *cov * H_m.transpose() + R;
-    const Mat2 K = *cov * H_m.transpose() * Q.inverse();
-    *mean += K * nu;
-    const Mat2 I_KH = Mat2::Identity() - K * H_m;
-    *cov = I_KH * *cov * I_KH.transpose() + K * R * K.transpose();
-    *cov = 0.5 * (*cov + cov->transpose());
-    floor_covariance(cov);
-    ARBOR_CHECK((*cov)(0, 0) > 0.0 && cov->determinant() > 0.0, "landmark {} covariance lost definiteness", id);
-    return ll;
   }
 
   // New landmarks from the measurements the association left unexplained (inverse measurement model); a
@@ -594,9 +500,7 @@ class FastSlam {
       Landmark lm;
       ARBOR_CHECK(p.next_id < std::numeric_limits<LandmarkId>::max(), "landmark ids are exhausted");
       lm.id = p.next_id++;
-      lm.mean = range_bearing_inverse(p.pose, measurements[k].z());
-      lm.cov = range_bearing_initial_covariance(p.pose, measurements[k].z(), R_);
-      floor_covariance(&lm.cov);  // rank 1 at zero range
+      ekf_.start(p.pose, measurements[k].z(), &lm.mean, &lm.cov);
       lm.log_odds = static_cast<float>(options_.log_odds_initial);
       lm.confirmed = lm.log_odds >= options_.log_odds_confirm;
       lm.born_scan = lm.seen_scan = scan_index_;
@@ -606,27 +510,6 @@ class FastSlam {
       s.touched.push_back({lm, true});
     }
     return log_weight;
-  }
-
-  // Locality (Ge & Lewis 2006, ch. 9): everything observed in this scan was seen together. Then the map is
-  // written, once per touched landmark. The sets cost O(m^2) per scan and particle (11 % of a step with
-  // known association and 1000 particles), so they are kept only where something reads them.
-  void write_touched(ParticleState& p, Scratch& s) const {
-    if (keep_localities_)
-      for (auto& a : s.touched)
-        for (const auto& b : s.touched)
-          if (a.landmark.id != b.landmark.id) a.landmark.locality.add(b.landmark.id);
-    for (const auto& t : s.touched) {
-      if (t.is_new) p.map.insert(t.landmark);
-      else p.map.set(t.landmark);
-    }
-  }
-
-  void record_decisions(ParticleState& p, std::size_t measurements, const Scratch& s) const {
-    StepDecisions applied{step_index_, std::vector<LandmarkId>(measurements, kNoLandmark), s.erased};
-    for (std::size_t k = 0; k < measurements; ++k)
-      if (s.touched_of[k] >= 0) applied.landmarks[k] = s.touched[s.touched_of[k]].landmark.id;
-    p.decisions.push(std::move(applied));
   }
 
   // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from a pose
@@ -713,16 +596,7 @@ class FastSlam {
   // s.nearby: every landmark in the query box around pose, ascending id (the map concept's visit order).
   void gather_nearby(const Particle<Map>& p, const Pose2& pose, Scratch& s, double extra_reach_m = 0.0) const {
     s.nearby.clear();
-    p.map.visit_near(query_box(pose, extra_reach_m), [&](const Landmark& lm) { s.nearby.push_back(lm); });
-  }
-
-  // The landmark with this id as the map holds it now: from s.nearby when it is there (a binary search
-  // instead of a second descent of the map), else from the map. Valid until the map is written at the end
-  // of the particle's update.
-  static const Landmark* find_landmark(const Particle<Map>& p, const Scratch& s, LandmarkId id) {
-    const auto it = std::lower_bound(s.nearby.begin(), s.nearby.end(), id,
-                                     [](const Landmark& lm, LandmarkId v) { return lm.id < v; });
-    return it != s.nearby.end() && it->id == id ? &*it : p.map.find(id);
+    p.map.visit_near(view_.query_box(pose, extra_reach_m), [&](const Landmark& lm) { s.nearby.push_back(lm); });
   }
 
   // One decision per measurement: landmark id, kNewLandmark or kSpurious.
@@ -741,7 +615,7 @@ class FastSlam {
   // Landmarks predicted well inside the view but not observed lose evidence and may be pruned; provisional
   // ones near the robot that have outlived their window are dropped. s.nearby must hold the landmarks
   // gathered this step.
-  void apply_negative_evidence(ParticleState& p, Scratch& s, const std::vector<Touched>& touched) {
+  void apply_negative_evidence(ParticleState& p, Scratch& s, std::span<const TouchedLandmark> touched) {
     s.erased.clear();
     for (const Landmark& lm : s.nearby) {
       // An alias a measurement was paired through was seen too: the measurement updated its original instead.
@@ -749,7 +623,7 @@ class FastSlam {
         continue;
       const auto drop = [&] {
         p.map.erase(lm.id);
-        s.erased.push_back(lm.id);  // recorded, so the decisions can be replayed (record_decisions)
+        s.erased.push_back(lm.id);  // recorded, so the decisions can be replayed (applied_decisions)
       };
       if (std::find(s.retired.begin(), s.retired.end(), lm.id) != s.retired.end()) {
         drop();
@@ -759,7 +633,7 @@ class FastSlam {
         drop();
         continue;
       }
-      if (!in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
+      if (!view_.in_evidence_view(range_bearing_predict(p.pose, lm.mean))) continue;
       Landmark updated = lm;
       updated.log_odds = static_cast<float>(lm.log_odds - options_.log_odds_miss);
       if (prune_ && updated.log_odds < options_.log_odds_prune) drop();
@@ -778,10 +652,6 @@ class FastSlam {
       return std::find(erased.begin(), erased.end(), a.copy) != erased.end() ||
              std::find(erased.begin(), erased.end(), a.original) != erased.end();
     });
-  }
-
-  static bool touches(const std::vector<Touched>& touched, LandmarkId id) {
-    return std::any_of(touched.begin(), touched.end(), [&](const Touched& t) { return t.landmark.id == id; });
   }
 
   // Whether measurement k was paired through an alias. Its weight then allows the loop's drift
@@ -808,7 +678,7 @@ class FastSlam {
         if (copy == end) s.retired.push_back(a.copy);
         continue;
       }
-      if (copy == end || find_landmark(p, s, a.original) == nullptr) continue;
+      if (copy == end || find_landmark(p.map, s.nearby, a.original) == nullptr) continue;
       s.redirected[copy - s.decision.begin()] = a.copy;
       *copy = a.original;
     }
@@ -825,7 +695,7 @@ class FastSlam {
         if (a.copy == id || a.original == id) return true;
       return false;
     };
-    for (const Touched& t : s.touched) {
+    for (const TouchedLandmark& t : s.touched) {
       if (t.is_new || t.was_confirmed || !t.landmark.confirmed) continue;
       const Landmark& copy = t.landmark;
       const Landmark* original = nullptr;
@@ -878,7 +748,7 @@ class FastSlam {
     best.map.for_each([&](const Landmark& lm) {
       if (!lm.confirmed || !settled(lm)) return;
       problem.candidates.push_back(candidate(lm, best.pose));
-      in_view_here += in_evidence_view(problem.candidates.back().z_hat);
+      in_view_here += view_.in_evidence_view(problem.candidates.back().z_hat);
     });
     Pose2 found;
     const int pairings = problem.candidates.size() < 2 ? 0 : relocalizer_(problem, &found);
@@ -961,7 +831,7 @@ class FastSlam {
   int settled_in_view(const ParticleState& best, const Pose2& pose) const {
     int in_view = 0;
     best.map.for_each([&](const Landmark& lm) {
-      if (lm.confirmed && settled(lm)) in_view += in_evidence_view(range_bearing_predict(pose, lm.mean));
+      if (lm.confirmed && settled(lm)) in_view += view_.in_evidence_view(range_bearing_predict(pose, lm.mean));
     });
     return in_view;
   }
@@ -996,10 +866,12 @@ class FastSlam {
   FastSlamOptions options_;
   MotionModel motion_;
   SensorModel sensor_;
-  Mat2 R_;
+  Mat2 R_;                           // the measurement noise
+  SensorView view_;
+  MeasurementLikelihood likelihood_;
+  LandmarkEkf ekf_;
   Assoc strategy_;
   double log_likelihood_unpaired_ = 0.0;
-  double student_log_norm_ = 0.0;    // log Gamma((nu+2)/2) - log Gamma(nu/2) - log(nu pi), 2-D Student-t
   double last_time_s_ = 0.0;
   BodyProcessNoise step_noise_;      // the step's control noise in the start frame, shared by every particle
   bool prune_ = true;
