@@ -13,7 +13,6 @@
 #include <limits>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -33,6 +32,7 @@
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
 #include "core/engine/sensor_view.h"
+#include "core/engine/set_spread.h"
 #include "core/engine/touched_landmark.h"
 #include "core/types/scenario.h"
 #include "core/math/chi_square.h"
@@ -122,8 +122,8 @@ class FastSlam {
       particles_[i].move.anchor = pose;
     }
     weights_.assign(options.particles, 1.0 / options.particles);
-    if (options.gate_covariance == GateCovariance::kSet) predicted_.resize(options.particles);
-    moves_ = options.move_window > 0;
+    if (options.gate_covariance == GateCovariance::kSet) set_spread_.emplace(options.particles);
+    if (options.move_window > 0) moves_.emplace(options, ekf_);
   }
 
   // Processes one step: resample if the previous step left N_eff low, then predict and (with a scan)
@@ -145,15 +145,15 @@ class FastSlam {
         });
       });
     };
-    if (options_.gate_covariance == GateCovariance::kSet && step.has_scan && !step.measurements.empty()) {
+    if (set_spread_ && step.has_scan && !step.measurements.empty()) {
       // The set's spread needs every particle's prediction first: two passes with a serial reduction between.
       for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) {
         predict_particle(p, step, i);
-        collect_predicted_measurements(p, i, s);
+        collect_predicted_measurements(p, s, &set_spread_->predicted(i));
       });
-      reduce_set_spread();
+      set_spread_->reduce(weights_);
       for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) { correct_particle(p, step, i, s); });
-      set_spread_.clear();
+      set_spread_->clear();
     } else {
       for_each_particle(grain, [&](ParticleState& p, int i, Scratch& s) {
         predict_particle(p, step, i);
@@ -227,13 +227,7 @@ class FastSlam {
   // The landmarks particle i's resample-move window touched, replayed along the path it holds: equal to what
   // its map holds, which is how the tests check the move's bookkeeping.
   std::vector<LandmarkEstimate> replay_move_window(int i) const {
-    const MoveWindow& w = particles_[i].move;
-    std::vector<Pose2> poses;
-    for (const auto& scan : w.scans) poses.push_back(scan->pose);
-    std::vector<LandmarkEstimate> after;
-    std::vector<std::vector<LandmarkEstimate>> before;
-    move_log_target(w, poses, &after, &before);
-    return after;
+    return moves_ ? moves_->replay(particles_[i].move) : std::vector<LandmarkEstimate>{};
   }
 
   // Scans at which every particle was re-seeded at a relocalised pose.
@@ -288,38 +282,7 @@ class FastSlam {
       const double h = options_.roughen * std::pow(4.0 / (particles_.size() * (d + 2.0)), 1.0 / (d + 4.0));
       roughening_kernel_ = Mat3(h * h * set_before_resampling.covariance);
     }
-    if (moves_) move_all();
-  }
-
-  // Resample-move (core/engine/resample_move.h): every particle tries move_steps proposals over its window,
-  // at scales move_scale, move_scale / 2, move_scale / 4, ... in turn.
-  void move_all() {
-    std::vector<int> accepted(particles_.size(), 0);
-    const auto log_target = [&](const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
-                                std::vector<std::vector<LandmarkEstimate>>* before) {
-      return move_log_target(w, poses, after, before);
-    };
-    arena_.execute([&] {
-      tbb::parallel_for(0, static_cast<int>(particles_.size()), [&](int i) {
-        RandomStream rng(options_.seed, step_index_, i, RandomPurpose::kMove);
-        accepted[i] = move_particle(particles_[i], log_target, options_.move_steps, options_.move_scale, rng);
-      });
-    });
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-      stats_.moves_accepted += accepted[i];
-      stats_.moves_proposed += particles_[i].move.scans.empty() ? 0 : options_.move_steps;
-    }
-  }
-
-  // The window's log target along poses, replaying its landmark updates as update_landmarks and
-  // add_new_landmarks made them.
-  double move_log_target(const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
-                         std::vector<std::vector<LandmarkEstimate>>* before) const {
-    const auto update = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
-      return e ? ekf_.update(pose, z, e->id, &e->mean, &e->cov) : 0.0;
-    };
-    const auto start = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) { ekf_.start(pose, z, &e->mean, &e->cov); };
-    return window_log_target(w, poses, update, start, after, before);
+    if (moves_) moves_->move_all(particles_, step_index_, arena_, &stats_.moves_proposed, &stats_.moves_accepted);
   }
 
   // Whether a landmark predicted at z is an association candidate. The oracle must find the landmark an id
@@ -338,10 +301,7 @@ class FastSlam {
     p.step_paired_settled = 0;
     if (roughening_kernel_) p.pose_covariance += *roughening_kernel_;
     motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
-    if (moves_ && step.has_scan) {
-      p.move.pending_predicted = p.move.last_draw().between(p.pose);
-      p.move.pending_cov = in_frame_of(p.move.last_draw(), p.pose_covariance);
-    }
+    if (moves_ && step.has_scan) ResampleMove::predicted(p.pose, p.pose_covariance, &p.move);
     // FastSLAM 1.0 draws first and associates at the sample (P = 0); 2.0 associates at the prediction with
     // its covariance, because its proposal is drawn only after association (DESIGN.md §4).
     if (options_.version == FilterVersion::kFastSlam1 && step.has_scan && !step.measurements.empty())
@@ -359,16 +319,14 @@ class FastSlam {
         if (!s.erased.empty()) p.decisions.push({step_index_, {}, s.erased});
       }
       record_pose(p, step);
-      if (moves_ && step.has_scan) record_move_scan(p, {}, s);
+      if (moves_ && step.has_scan) moves_->record(drawn_scan(p.move, p.pose, {}, {}, {}, nullptr), &p.move);
       return;
     }
     gather_candidates(p, p.pose, p.pose_covariance, step, s);
     decide(p, step, s);
     redirect_aliases(p, s);
     collect_touched(p, s);
-    std::vector<LandmarkEstimate> before;
-    if (moves_)
-      for (const TouchedLandmark& t : s.touched) before.push_back({t.landmark.id, t.landmark.mean, t.landmark.cov});
+    std::vector<LandmarkEstimate> before = moves_ ? estimates_before(s.touched) : std::vector<LandmarkEstimate>{};
     if (options_.relocalize)
       for (int t : s.touched_of) p.step_paired_settled += t >= 0 && settled(s.touched[t].landmark);
     double log_weight = fastslam2 ? propose_and_draw(p, step.measurements, index, s) : 0.0;
@@ -380,26 +338,7 @@ class FastSlam {
     p.log_weight += log_weight;
     record_pose(p, step);
     p.decisions.push(applied_decisions(step_index_, s.touched, s.touched_of, s.erased));
-    if (moves_) record_move_scan(p, std::move(before), s, &step.measurements);
-  }
-
-  // The scan just drawn joins the particle's resample-move window: its prediction, its draw, and its
-  // pairings in the order update_landmarks and add_new_landmarks applied them.
-  void record_move_scan(ParticleState& p, std::vector<LandmarkEstimate> before, const Scratch& s,
-                        const std::vector<Measurement>* measurements = nullptr) const {
-    auto scan = std::make_shared<MoveScan>();
-    scan->pose = p.pose;
-    scan->predicted = p.move.pending_predicted;
-    scan->predicted_cov = p.move.pending_cov;
-    scan->before = std::move(before);
-    scan->history_entries_before = p.move.history_entries_since_draw;
-    if (measurements)
-      for (bool fresh : {false, true})
-        for (std::size_t k = 0; k < measurements->size(); ++k) {
-          if (s.touched_of[k] < 0 || s.touched[s.touched_of[k]].is_new != fresh) continue;
-          scan->pairings.push_back({(*measurements)[k].z(), s.touched[s.touched_of[k]].landmark.id, fresh});
-        }
-    p.move.push(std::move(scan), options_.move_window);
+    if (moves_) moves_->record(drawn_scan(p.move, p.pose, std::move(before), s.touched, s.touched_of, &step.measurements), &p.move);
   }
 
   // Replaces the prediction N(pose, P) by one draw from it.
@@ -539,44 +478,19 @@ class FastSlam {
   }
 
   // FastSlamOptions::gate_covariance = set: the measurements this particle predicts for the landmarks it
-  // could see, for reduce_set_spread.
-  void collect_predicted_measurements(const ParticleState& p, int index, Scratch& s) {
+  // could see, for SetSpread::reduce.
+  void collect_predicted_measurements(const ParticleState& p, Scratch& s, std::vector<SetSpread::PredictedMeasurement>* out) const {
     const ViewMargin margin = uncertainty_margin(p.pose_covariance);
     gather_nearby(p, p.pose, s, margin.range_m);
-    std::vector<PredictedMeasurement>& out = predicted_[index];
-    out.clear();
+    out->clear();
     for (const Landmark& lm : s.nearby) {
       const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean);
-      if (is_candidate(z_hat, margin)) out.push_back({lm.id, z_hat});
+      if (is_candidate(z_hat, margin)) out->push_back({lm.id, z_hat});
     }
     s.nearby.clear();
   }
 
-  // Per landmark, the weighted covariance over the particles that hold it of their predicted measurements
-  // (weights renormalised over those particles; bearings wrapped about the first particle's): by the law of
-  // total covariance, what the mixture's innovation covariance adds to a particle's own. Serial, in particle
-  // order, so the sums are the same whatever the thread count.
-  void reduce_set_spread() {
-    set_spread_.clear();
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      for (const PredictedMeasurement& m : predicted_[i]) {
-        auto [it, fresh] = set_spread_.try_emplace(m.id);
-        SetSpread& sum = it->second;
-        if (fresh) sum.reference = m.z_hat;
-        const Vec2 d = range_bearing_innovation(m.z_hat, sum.reference);
-        sum.w += weights_[i];
-        sum.first += weights_[i] * d;
-        sum.second += weights_[i] * d * d.transpose();
-      }
-    for (auto& [id, sum] : set_spread_) {
-      if (!(sum.w > 0.0)) continue;  // the spread stays zero
-      const Vec2 mean = sum.first / sum.w;
-      sum.spread = sum.second / sum.w - mean * mean.transpose();
-      sum.spread = 0.5 * (sum.spread + sum.spread.transpose());
-    }
-  }
-
-  // Landmark lm as an association candidate seen from pose.
+  // Landmark lm as an association candidate seen from pose, its gate widened by the set's spread (if any).
   AssociationCandidate candidate(const Landmark& lm, const Pose2& pose) const {
     AssociationCandidate c;
     Mat2 H_m;
@@ -584,8 +498,8 @@ class FastSlam {
     c.id = lm.id;
     c.truth_label = lm.truth_label;
     c.S = H_m * lm.cov * H_m.transpose() + R_;
-    if (!set_spread_.empty())
-      if (const auto it = set_spread_.find(lm.id); it != set_spread_.end()) c.S += it->second.spread;
+    if (set_spread_)
+      if (const Mat2* d = set_spread_->spread(lm.id)) c.S += *d;
     c.position = lm.mean;
     c.position_cov = lm.cov;
     c.signature = lm.signature;
@@ -884,23 +798,9 @@ class FastSlam {
   std::vector<ParticleState> particles_;
   std::vector<double> weights_;
   tbb::enumerable_thread_specific<Scratch> scratch_;
-  // FastSlamOptions::gate_covariance = set: each particle's predicted measurements, and per landmark their
-  // spread over the set; filled and emptied within a scan's step.
-  struct PredictedMeasurement {
-    LandmarkId id;
-    Vec2 z_hat;
-  };
-  std::vector<std::vector<PredictedMeasurement>> predicted_;
-  // Per landmark, the weighted sums over the particles that predict it, then the spread they give.
-  struct SetSpread {
-    Vec2 reference;
-    double w = 0.0;
-    Vec2 first = Vec2::Zero();
-    Mat2 second = Mat2::Zero();
-    Mat2 spread = Mat2::Zero();
-  };
-  std::unordered_map<LandmarkId, SetSpread> set_spread_;
-  bool moves_ = false;  // FastSlamOptions::move_window > 0
+  // The policies beside the paper's steps, each held only when its option is on.
+  std::optional<SetSpread> set_spread_;  // FastSlamOptions::gate_covariance = set
+  std::optional<ResampleMove> moves_;    // FastSlamOptions::move_window > 0
   std::optional<Mat3> roughening_kernel_;  // FastSlamOptions::roughen: added at the step after a resampling
   std::int64_t step_index_ = 0;
   std::int32_t scan_index_ = 0;  // scans before this step: a landmark's born_scan
