@@ -33,7 +33,7 @@
 #include "core/engine/resample_move.h"
 #include "core/engine/resampling.h"
 #include "core/engine/rng.h"
-#include "core/engine/sensor_view.h"
+#include "core/engine/scan_problem.h"
 #include "core/engine/set_spread.h"
 #include "core/engine/touched_landmark.h"
 #include "core/math/chi_square.h"
@@ -48,8 +48,7 @@ class FastSlam {
  public:
   // relocalizer: needed (non-empty) when options.relocalize is set.
   FastSlam(const Scenario& scenario, const FastSlamOptions& options, Relocalizer relocalizer = {})
-      : options_(options), motion_(scenario.motion), R_(scenario.sensor.R()), view_(scenario.sensor, options),
-        signature_sigma_(scenario.sensor.sigma_signature),
+      : options_(options), motion_(scenario.motion), R_(scenario.sensor.R()), scan_(scenario.sensor, options),
         likelihood_(options.likelihood, options.student_dof), ekf_(R_, likelihood_),
         existence_(options, !Assoc::kTraits.uses_ground_truth || options.prune_with_known_association),
         strategy_(options.association), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
@@ -96,7 +95,7 @@ class FastSlam {
       // The set's spread needs every particle's prediction first: two passes with a serial reduction between.
       for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) {
         predict_particle(p, step, i);
-        collect_predicted_measurements(p, s, &set_spread_->predicted(i));
+        scan_.predict(p.map, p.pose, p.pose_covariance, &s.nearby, &set_spread_->predicted(i));
       });
       set_spread_->reduce(weights_);
       for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) { correct_particle(p, step, i, s); });
@@ -180,7 +179,7 @@ class FastSlam {
 
   struct Scratch {
     std::vector<Landmark> nearby;              // landmarks in the query box, ascending id
-    AssociationProblem problem;
+    ScanProblemScratch problem;                // this particle's association problem
     AssociationResult result;
     typename Assoc::Scratch strategy;
     std::vector<LandmarkId> decision;          // per measurement
@@ -191,8 +190,10 @@ class FastSlam {
     bool provisional_steers = false;           // FastSlamOptions::provisional_steer_min: they steer this scan
   };
 
-  // What a scan shares between its particles, built once: the relocalisation's per-scan counts.
-  void begin_scan(const ScenarioStep&) {
+  // What a scan shares between its particles, built once: its measurements as the association problems read
+  // them (core/engine/scan_problem.h), and the relocalisation's per-scan counts.
+  void begin_scan(const ScenarioStep& step) {
+    scan_.begin_scan(step_index_, step.measurements);
     if (relocalization_) relocalization_->begin_scan(particle_count());
   }
 
@@ -239,7 +240,7 @@ class FastSlam {
     if (!step.has_scan || step.measurements.empty()) {
       if (step.has_scan || per_control) draw_pose(p, index, RandomPurpose::kMotion);
       if (step.has_scan) {
-        gather_nearby(p, p.pose, s);
+        scan_.gather_nearby(p.map, p.pose, 0.0, &s.nearby);
         apply_negative_evidence(p, s, /*touched=*/{});
         if (!s.erased.empty()) p.decisions.push({step_index_, {}, s.erased});
       }
@@ -247,7 +248,7 @@ class FastSlam {
       if (moves_ && step.has_scan) moves_->record(drawn_scan(p.move, p.pose, {}, {}, {}, nullptr), &p.move);
       return;
     }
-    gather_candidates(p, p.pose, p.pose_covariance, step, s);
+    scan_.gather(p.map, p.pose, p.pose_covariance, spread(), &s.nearby, &s.problem);
     decide(p, step, s);
     if (loops_) loops_->redirect(p.aliases, [&](LandmarkId id) { return find_landmark(p.map, s.nearby, id); }, &s.decision, &s.loops);
     collect_touched(p, s);
@@ -377,74 +378,11 @@ class FastSlam {
     return log_weight;
   }
 
-  // Fills s.nearby (every landmark in the query box) and s.problem (those the sensor could see from a pose
-  // drawn from N(pose, P): the view is widened by three standard deviations of P).
-  void gather_candidates(const Particle<Map>& p, const Pose2& pose, const Mat3& P, const ScenarioStep& step, Scratch& s) {
-    const ViewMargin margin = uncertainty_margin(P);
-    gather_nearby(p, pose, s, margin.range_m);
-    begin_problem(step.measurements, P, &s.problem);
-    for (const Landmark& lm : s.nearby) {
-      const AssociationCandidate c = candidate(lm, pose);
-      if (is_candidate(c.z_hat, margin)) s.problem.candidates.push_back(c);
-    }
-  }
-
-  // The problem's measurements, noise and pose covariance P; no candidates yet.
-  void begin_problem(const std::vector<Measurement>& measurements, const Mat3& P, AssociationProblem* problem) const {
-    problem->measurements.clear();
-    for (const Measurement& m : measurements) problem->measurements.push_back({m.z(), m.signature, m.truth_id});
-    problem->candidates.clear();
-    problem->R = R_;
-    problem->P = P;
-    problem->signature_sigma = signature_sigma_;
-  }
-
-  // Whether a landmark predicted at z is an association candidate. The oracle must find the landmark an id
-  // names wherever the estimate puts it: were it left out, a second landmark would start for the same id.
-  // Every other strategy sees only what could be in view.
-  bool is_candidate(const Vec2& z, const ViewMargin& margin) const {
-    return Assoc::kTraits.uses_ground_truth || view_.in_candidate_view(z, margin);
-  }
-
-  // FastSlamOptions::gate_covariance = set: the measurements this particle predicts for the landmarks it
-  // could see, for SetSpread::reduce.
-  void collect_predicted_measurements(const ParticleState& p, Scratch& s, std::vector<SetSpread::PredictedMeasurement>* out) const {
-    const ViewMargin margin = uncertainty_margin(p.pose_covariance);
-    gather_nearby(p, p.pose, s, margin.range_m);
-    out->clear();
-    for (const Landmark& lm : s.nearby) {
-      const Vec2 z_hat = range_bearing_predict(p.pose, lm.mean);
-      if (is_candidate(z_hat, margin)) out->push_back({lm.id, z_hat});
-    }
-    s.nearby.clear();
-  }
-
-  // Landmark lm as an association candidate seen from pose, its gate widened by the set's spread (if any).
-  AssociationCandidate candidate(const Landmark& lm, const Pose2& pose) const {
-    AssociationCandidate c;
-    Mat2 H_m;
-    c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
-    c.id = lm.id;
-    c.truth_label = lm.truth_label;
-    c.S = H_m * lm.cov * H_m.transpose() + R_;
-    if (set_spread_)
-      if (const Mat2* d = set_spread_->spread(lm.id)) c.S += *d;
-    c.position = lm.mean;
-    c.position_cov = lm.cov;
-    c.signature = lm.signature;
-    c.locality = lm.locality;
-    return c;
-  }
-
-  // s.nearby: every landmark in the query box around pose, ascending id (the map concept's visit order).
-  void gather_nearby(const Particle<Map>& p, const Pose2& pose, Scratch& s, double extra_reach_m = 0.0) const {
-    s.nearby.clear();
-    p.map.visit_near(view_.query_box(pose, extra_reach_m), [&](const Landmark& lm) { s.nearby.push_back(lm); });
-  }
+  const SetSpread* spread() const { return set_spread_ ? &*set_spread_ : nullptr; }  // gate_covariance = set
 
   // One decision per measurement: landmark id, kNewLandmark or kSpurious.
   void decide(ParticleState& p, const ScenarioStep& step, Scratch& s) {
-    strategy_.solve(s.problem, s.strategy, s.result);
+    strategy_.solve(s.problem.problem, s.strategy, s.result);
     ARBOR_CHECK(s.result.pairing.size() == step.measurements.size(), "strategy {} returned {} decisions for {} measurements",
                 Assoc::kName, s.result.pairing.size(), step.measurements.size());
     s.decision = s.result.pairing;
@@ -457,7 +395,7 @@ class FastSlam {
   // Existence evidence against the landmarks the scan should have seen and did not (core/engine/existence.h);
   // s.nearby must hold the landmarks gathered this scan. Loop closing's bookkeeping runs only when it is on.
   void apply_negative_evidence(ParticleState& p, Scratch& s, std::span<const TouchedLandmark> touched) {
-    existence_.miss_unseen(s.nearby, touched, p.pose, scan_index_, view_, loops_ ? &s.loops : nullptr, &p.map, &s.erased);
+    existence_.miss_unseen(s.nearby, touched, p.pose, scan_index_, scan_.view(), loops_ ? &s.loops : nullptr, &p.map, &s.erased);
     s.nearby.clear();
     if (loops_) {
       s.loops.redirected.clear();
@@ -468,10 +406,10 @@ class FastSlam {
 
   // Relocalisation (core/engine/relocalization.h), between steps: a re-seeding starts the weights equal.
   void relocalize_if_lost(const ScenarioStep& step) {
-    const auto begin = [&](AssociationProblem* problem) { begin_problem(step.measurements, Mat3::Zero(), problem); };
-    const auto candidate_at = [&](const Landmark& lm, const Pose2& pose) { return candidate(lm, pose); };
-    const auto in_view = [&](const Vec2& z) { return view_.in_evidence_view(z); };
-    if (!relocalization_->relocalize_if_lost(particles_, best_particle(), step, step_index_, scan_index_, begin, candidate_at, in_view))
+    const auto begin = [&](AssociationProblem* problem) { scan_.begin(Mat3::Zero(), problem); };
+    const auto candidate = [&](const Landmark& lm, const Pose2& pose) { return scan_.candidate(lm, pose, spread()); };
+    const auto in_view = [&](const Vec2& z) { return scan_.view().in_evidence_view(z); };
+    if (!relocalization_->relocalize_if_lost(particles_, best_particle(), step, step_index_, scan_index_, begin, candidate, in_view))
       return;
     weights_.assign(particles_.size(), 1.0 / particles_.size());
     last_n_eff_ = static_cast<double>(particles_.size());
@@ -481,8 +419,7 @@ class FastSlam {
   FastSlamOptions options_;
   MotionModel motion_;
   Mat2 R_;                           // the measurement noise
-  SensorView view_;
-  double signature_sigma_;
+  ScanProblem<Assoc::kTraits.uses_ground_truth> scan_;
   MeasurementLikelihood likelihood_;
   LandmarkEkf ekf_;
   ExistenceEvidence existence_;
