@@ -14,16 +14,25 @@
 #define ARBOR_CORE_ENGINE_RESAMPLE_MOVE_H_
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
+#include "core/engine/fastslam_options.h"
+#include "core/engine/landmark_ekf.h"
 #include "core/engine/rng.h"
+#include "core/engine/touched_landmark.h"
 #include "core/math/eigen_types.h"
 #include "core/math/pose2.h"
 #include "core/types/landmark.h"
+#include "core/types/scenario.h"
 
 namespace arbor {
 
@@ -71,6 +80,34 @@ struct MoveWindow {
     history_entries_since_draw = 0;
   }
 };
+
+// The landmarks a scan is about to update, as they are before it (MoveScan::before).
+inline std::vector<LandmarkEstimate> estimates_before(std::span<const TouchedLandmark> touched) {
+  std::vector<LandmarkEstimate> before;
+  for (const TouchedLandmark& t : touched) before.push_back({t.landmark.id, t.landmark.mean, t.landmark.cov});
+  return before;
+}
+
+// The scan just drawn at pose, for window w: its prediction, its draw, and its pairings in the order the
+// engine applied them, updates of existing landmarks before new ones (touched_of: per measurement, its index
+// in touched or -1). Without measurements (an empty scan) it pairs nothing.
+inline std::shared_ptr<const MoveScan> drawn_scan(const MoveWindow& w, const Pose2& pose, std::vector<LandmarkEstimate> before,
+                                                  std::span<const TouchedLandmark> touched, std::span<const int> touched_of,
+                                                  const std::vector<Measurement>* measurements) {
+  auto scan = std::make_shared<MoveScan>();
+  scan->pose = pose;
+  scan->predicted = w.pending_predicted;
+  scan->predicted_cov = w.pending_cov;
+  scan->before = std::move(before);
+  scan->history_entries_before = w.history_entries_since_draw;
+  if (measurements)
+    for (bool fresh : {false, true})
+      for (std::size_t k = 0; k < measurements->size(); ++k) {
+        if (touched_of[k] < 0 || touched[touched_of[k]].is_new != fresh) continue;
+        scan->pairings.push_back({(*measurements)[k].z(), touched[touched_of[k]].landmark.id, fresh});
+      }
+  return scan;
+}
 
 // The prediction's covariance in the frame of the pose it started from (x, y rotated by -heading).
 inline Mat3 in_frame_of(const Pose2& from, const Mat3& world_cov) {
@@ -233,6 +270,71 @@ int move_particle(Particle& p, const LogTarget& log_target, int steps, double sc
   if (accepted > 0) apply_move(p, poses, after, before);
   return accepted;
 }
+
+// The policy the engine holds when FastSlamOptions::move_window > 0: it keeps each particle's window at every
+// scan, and after a resampling moves every particle.
+class ResampleMove {
+ public:
+  ResampleMove(const FastSlamOptions& options, const LandmarkEkf& ekf)
+      : window_(options.move_window), steps_(options.move_steps), scale_(options.move_scale), seed_(options.seed), ekf_(ekf) {}
+
+  // At a scan, before the draw: the prediction since the window's last draw, in that draw's frame.
+  static void predicted(const Pose2& pose, const Mat3& pose_covariance, MoveWindow* w) {
+    w->pending_predicted = w->last_draw().between(pose);
+    w->pending_cov = in_frame_of(w->last_draw(), pose_covariance);
+  }
+
+  // The scan just drawn joins the window (drawn_scan gives its arguments).
+  void record(std::shared_ptr<const MoveScan> scan, MoveWindow* w) const { w->push(std::move(scan), window_); }
+
+  // The window's log target along poses, replaying its landmark updates as the engine made them.
+  double log_target(const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
+                    std::vector<std::vector<LandmarkEstimate>>* before) const {
+    const auto update = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
+      return e ? ekf_.update(pose, z, e->id, &e->mean, &e->cov) : 0.0;
+    };
+    const auto start = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) { ekf_.start(pose, z, &e->mean, &e->cov); };
+    return window_log_target(w, poses, update, start, after, before);
+  }
+
+  // The landmarks window w touched, replayed along the path it holds.
+  std::vector<LandmarkEstimate> replay(const MoveWindow& w) const {
+    std::vector<Pose2> poses;
+    for (const auto& scan : w.scans) poses.push_back(scan->pose);
+    std::vector<LandmarkEstimate> after;
+    std::vector<std::vector<LandmarkEstimate>> before;
+    log_target(w, poses, &after, &before);
+    return after;
+  }
+
+  // After a resampling at step: every particle tries move_steps proposals over its window, at scales
+  // move_scale, move_scale / 2, move_scale / 4, ... in turn, each with its own stream (seed, step, particle,
+  // kMove), in parallel. Adds the proposals and acceptances to *proposed and *accepted.
+  template <class Particle>
+  void move_all(std::vector<Particle>& particles, std::int64_t step, tbb::task_arena& arena, std::int64_t* proposed,
+                std::int64_t* accepted) const {
+    std::vector<int> accepted_by(particles.size(), 0);
+    const auto target = [&](const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
+                            std::vector<std::vector<LandmarkEstimate>>* before) { return log_target(w, poses, after, before); };
+    arena.execute([&] {
+      tbb::parallel_for(0, static_cast<int>(particles.size()), [&](int i) {
+        RandomStream rng(seed_, step, i, RandomPurpose::kMove);
+        accepted_by[i] = move_particle(particles[i], target, steps_, scale_, rng);
+      });
+    });
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+      *accepted += accepted_by[i];
+      *proposed += particles[i].move.scans.empty() ? 0 : steps_;
+    }
+  }
+
+ private:
+  int window_;
+  int steps_;
+  double scale_;
+  std::uint64_t seed_;
+  LandmarkEkf ekf_;
+};
 
 }  // namespace arbor
 

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <Eigen/Eigenvalues>
+
 #include "core/math/angles.h"
 #include "core/math/eigen_types.h"
 
@@ -106,6 +108,14 @@ Vec3 draw_vec3(Draw&& draw) {
   const double y = draw();
   const double x = draw();
   return {x, y, z};
+}
+
+// Draws from N(mean, cov) with a symmetric square root, robust to a semi-definite covariance.
+inline Vec3 sample_gaussian(const Vec3& mean, const Mat3& cov, RandomStream& rng) {
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (cov + cov.transpose()));
+  const Vec3 n = draw_vec3([&] { return rng.normal(); });
+  const Vec3 scaled = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().cwiseProduct(n);
+  return mean + eig.eigenvectors() * scaled;
 }
 
 }  // namespace arbor

@@ -3,7 +3,7 @@
 #define ARBOR_VARIANTS_ASSOCIATION_LOCALITY_RELOCALIZER_H_
 
 #include "core/association/association_problem.h"
-#include "core/engine/fastslam.h"
+#include "core/engine/relocalization.h"
 
 namespace arbor {
 

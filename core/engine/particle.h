@@ -1,0 +1,93 @@
+// What a FastSLAM particle carries between steps, and what one step reports (core/engine/fastslam.h).
+#ifndef ARBOR_CORE_ENGINE_PARTICLE_H_
+#define ARBOR_CORE_ENGINE_PARTICLE_H_
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/engine/loop_closing.h"
+#include "core/engine/map_concept.h"
+#include "core/engine/persistent_history.h"
+#include "core/engine/resample_move.h"
+#include "core/engine/rng.h"
+#include "core/math/eigen_types.h"
+#include "core/math/angles.h"
+#include "core/math/pose2.h"
+#include "core/types/scenario.h"
+
+namespace arbor {
+
+template <LandmarkMap Map>
+struct Particle {
+  Pose2 pose;                   // the last draw, or between draws the predicted mean since it
+  Mat3 pose_covariance = Mat3::Zero();  // of the prediction since the last draw (zero right after one)
+  double log_weight = 0.0;
+  Map map;
+  PoseHistory history;
+  DecisionHistory decisions;    // scans with measurements or removals; for scoring and `arbor smooth --associations`
+  LandmarkId next_id = 0;       // the next new landmark's id (creation order, the same in every back end)
+  std::int64_t rejected = 0;    // this lineage's measurements rejected by the known-association gate
+  // Loop closing's lineage state (core/engine/loop_closing.h): it is resampled with the map it refers to.
+  std::vector<LandmarkAlias> aliases;  // open loop closures, oldest first (FastSlamOptions::close_loops)
+  std::int64_t loop_closures = 0;      // aliases this lineage made
+  MoveWindow move;                     // its last scans, for resample-move (FastSlamOptions::move_window)
+};
+
+// Particle index's start: a draw from the scenario's initial pose and its spread, from the stream (seed, -1,
+// index, kMotion), the first entry of its history and the anchor of its resample-move window.
+template <LandmarkMap Map>
+void start_particle(const Scenario& scenario, std::uint64_t seed, int index, Particle<Map>* particle) {
+  RandomStream rng(seed, ~std::uint64_t{0}, index, RandomPurpose::kMotion);
+  Pose2& pose = particle->pose;
+  pose = scenario.initial_pose;
+  pose.x += scenario.initial_sigma.x() * rng.normal();
+  pose.y += scenario.initial_sigma.y() * rng.normal();
+  pose.theta = wrap_angle(pose.theta + scenario.initial_sigma.z() * rng.normal());
+  particle->history.push({scenario.start_time_s, pose});
+  particle->move.anchor = pose;
+}
+
+// What one step did, summed over particles where it is a count.
+struct StepStats {
+  double n_eff = 0.0;       // effective sample size after weighting, before any resampling
+  bool resampled = false;   // whether this step began by resampling
+  std::int64_t hypotheses = 0;
+  std::int64_t tests = 0;
+  std::int64_t budget_exhausted = 0;  // particles whose search stopped at its budget (best answer so far)
+  std::size_t best_landmarks = 0;
+  bool relocalized = false;  // this scan re-seeded every particle at a relocalised pose
+  std::int64_t moves_proposed = 0;  // resample-move proposals after this step's resampling
+  std::int64_t moves_accepted = 0;
+};
+
+// Weighted mean and covariance of the particle poses (heading by circular mean, differences wrapped); between
+// draws each particle is a Gaussian, whose covariance the mixture's adds.
+struct PoseEstimate {
+  Pose2 mean;
+  Mat3 covariance = Mat3::Zero();
+};
+
+// The set's PoseEstimate under weights (one per particle).
+template <class Particle>
+PoseEstimate weighted_pose_estimate(const std::vector<Particle>& particles, const std::vector<double>& weights) {
+  PoseEstimate e;
+  double x = 0.0, y = 0.0, s = 0.0, c = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Pose2& p = particles[i].pose;
+    x += weights[i] * p.x;
+    y += weights[i] * p.y;
+    s += weights[i] * std::sin(p.theta);
+    c += weights[i] * std::cos(p.theta);
+  }
+  e.mean = {x, y, std::atan2(s, c)};
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Vec3 d = pose_error(particles[i].pose, e.mean);
+    e.covariance += weights[i] * (d * d.transpose() + particles[i].pose_covariance);
+  }
+  return e;
+}
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ENGINE_PARTICLE_H_

@@ -1,0 +1,136 @@
+// Each particle's association problem for one scan (DESIGN.md §4): the scan's measurements, built once per
+// scan and shared by every particle, and the particle's candidates, the landmarks its sensor could see.
+#ifndef ARBOR_CORE_ENGINE_SCAN_PROBLEM_H_
+#define ARBOR_CORE_ENGINE_SCAN_PROBLEM_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "core/association/association_problem.h"
+#include "core/engine/fastslam_options.h"
+#include "core/engine/map_concept.h"
+#include "core/engine/sensor_view.h"
+#include "core/engine/set_spread.h"
+#include "core/math/eigen_types.h"
+#include "core/math/pose2.h"
+#include "core/models/range_bearing_model.h"
+#include "core/models/sensor_model.h"
+#include "core/types/scenario.h"
+
+namespace arbor {
+
+// A thread's problem, and the step whose scan its measurements hold: copied once per scan and thread, never
+// rebuilt per particle.
+struct ScanProblemScratch {
+  AssociationProblem problem;
+  std::int64_t holds_step = -1;
+};
+
+// kGroundTruth: the strategy's traits ask for ground truth (StrategyTraits::uses_ground_truth). Only then do
+// the measurements' truth ids and the candidates' truth labels enter the problem, and only then is every
+// landmark in the query box a candidate: the oracle must find the landmark an id names wherever the estimate
+// puts it (were it left out, a second landmark would start for the same id). Every other strategy sees only
+// what could be in view.
+template <bool kGroundTruth>
+class ScanProblem {
+ public:
+  ScanProblem(const SensorModel& sensor, const FastSlamOptions& options)
+      : view_(sensor, options), R_(sensor.R()), signature_sigma_(sensor.sigma_signature) {}
+
+  const SensorView& view() const { return view_; }
+
+  // Builds the measurements every particle's problem shares, once per scan.
+  void begin_scan(std::int64_t step, const std::vector<Measurement>& measurements) {
+    step_ = step;
+    measurements_.clear();
+    for (const Measurement& m : measurements)
+      measurements_.push_back({m.z(), m.signature, kGroundTruth ? m.truth_id : kTruthUnknown});
+  }
+
+  // The problem's measurements, noise and pose covariance P; no candidates yet. A thread's problem copies the
+  // measurements once per scan.
+  void begin(const Mat3& P, ScanProblemScratch* s) const {
+    if (s->holds_step != step_) {
+      s->problem.measurements = measurements_;
+      s->holds_step = step_;
+    }
+    begin_candidates(P, &s->problem);
+  }
+  void begin(const Mat3& P, AssociationProblem* problem) const {
+    problem->measurements = measurements_;
+    begin_candidates(P, problem);
+  }
+
+  // *nearby: every landmark in the query box around pose, ascending id (the map concept's visit order).
+  template <LandmarkMap Map>
+  void gather_nearby(const Map& map, const Pose2& pose, double extra_reach_m, std::vector<Landmark>* nearby) const {
+    nearby->clear();
+    map.visit_near(view_.query_box(pose, extra_reach_m), [&](const Landmark& lm) { nearby->push_back(lm); });
+  }
+
+  // Fills *nearby (every landmark in the query box) and the problem's candidates (those the sensor could see
+  // from a pose drawn from N(pose, P): the view is widened by three standard deviations of P).
+  template <LandmarkMap Map>
+  void gather(const Map& map, const Pose2& pose, const Mat3& P, const SetSpread* spread, std::vector<Landmark>* nearby,
+              ScanProblemScratch* s) const {
+    const ViewMargin margin = uncertainty_margin(P);
+    gather_nearby(map, pose, margin.range_m, nearby);
+    begin(P, s);
+    for (const Landmark& lm : *nearby) {
+      const AssociationCandidate c = candidate(lm, pose, spread);
+      if (is_candidate(c.z_hat, margin)) s->problem.candidates.push_back(c);
+    }
+  }
+
+  // FastSlamOptions::gate_covariance = set: the measurements a particle at pose with covariance P predicts for
+  // the landmarks it could see, for SetSpread::reduce. Leaves *nearby empty.
+  template <LandmarkMap Map>
+  void predict(const Map& map, const Pose2& pose, const Mat3& P, std::vector<Landmark>* nearby,
+               std::vector<SetSpread::PredictedMeasurement>* out) const {
+    const ViewMargin margin = uncertainty_margin(P);
+    gather_nearby(map, pose, margin.range_m, nearby);
+    out->clear();
+    for (const Landmark& lm : *nearby) {
+      const Vec2 z_hat = range_bearing_predict(pose, lm.mean);
+      if (is_candidate(z_hat, margin)) out->push_back({lm.id, z_hat});
+    }
+    nearby->clear();
+  }
+
+  // Landmark lm as an association candidate seen from pose, its gate widened by the set's spread (if any).
+  AssociationCandidate candidate(const Landmark& lm, const Pose2& pose, const SetSpread* spread) const {
+    AssociationCandidate c;
+    Mat2 H_m;
+    c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
+    c.id = lm.id;
+    if constexpr (kGroundTruth) c.truth_label = lm.truth_label;
+    c.S = H_m * lm.cov * H_m.transpose() + R_;
+    if (spread)
+      if (const Mat2* d = spread->spread(lm.id)) c.S += *d;
+    c.position = lm.mean;
+    c.position_cov = lm.cov;
+    c.signature = lm.signature;
+    c.locality = lm.locality;
+    return c;
+  }
+
+ private:
+  void begin_candidates(const Mat3& P, AssociationProblem* problem) const {
+    problem->candidates.clear();
+    problem->R = R_;
+    problem->P = P;
+    problem->signature_sigma = signature_sigma_;
+  }
+
+  bool is_candidate(const Vec2& z, const ViewMargin& margin) const { return kGroundTruth || view_.in_candidate_view(z, margin); }
+
+  SensorView view_;
+  Mat2 R_;
+  double signature_sigma_;
+  std::int64_t step_ = -1;
+  std::vector<AssociationMeasurement> measurements_;  // this scan's, shared by every particle's problem
+};
+
+}  // namespace arbor
+
+#endif  // ARBOR_CORE_ENGINE_SCAN_PROBLEM_H_
