@@ -69,6 +69,7 @@ class ExistenceEvidence {
         drop();
         continue;
       }
+      if (!view.in_evidence_range(predicted_range(pose, lm.mean))) continue;  // most of the box: no atan2
       if (!view.in_evidence_view(range_bearing_predict(pose, lm.mean))) continue;
       Landmark updated = lm;
       updated.log_odds = static_cast<float>(lm.log_odds - miss_);

@@ -35,15 +35,21 @@ class SensorView {
     const double reach = max_range_m_ + candidate_range_m_ + extra_reach_m;
     return {pose.position() - Vec2(reach, reach), pose.position() + Vec2(reach, reach)};
   }
-  // Whether a landmark predicted at z could be seen from a pose within margin of the particle's.
+  // Whether a landmark predicted at z could be seen from a pose within margin of the particle's; the range
+  // half alone, for a test before the bearing is computed.
+  bool in_candidate_range(double range_m, const ViewMargin& margin) const {
+    return range_m <= max_range_m_ + candidate_range_m_ + margin.range_m;
+  }
   bool in_candidate_view(const Vec2& z, const ViewMargin& margin) const {
-    return z.x() <= max_range_m_ + candidate_range_m_ + margin.range_m &&
+    return in_candidate_range(z.x(), margin) &&
            std::abs(z.y()) <= 0.5 * fov_rad_ + candidate_bearing_rad_ + margin.bearing_rad;
   }
   // Whether a landmark predicted at z lies well inside the view: unseen there, it was missed.
+  bool in_evidence_range(double range_m) const {
+    return range_m <= max_range_m_ - evidence_range_m_ && range_m >= min_range_m_ + evidence_range_m_;
+  }
   bool in_evidence_view(const Vec2& z) const {
-    return z.x() <= max_range_m_ - evidence_range_m_ && z.x() >= min_range_m_ + evidence_range_m_ &&
-           std::abs(z.y()) <= 0.5 * fov_rad_ - evidence_bearing_rad_;
+    return in_evidence_range(z.x()) && std::abs(z.y()) <= 0.5 * fov_rad_ - evidence_bearing_rad_;
   }
 
  private:

@@ -17,6 +17,13 @@ namespace arbor {
 // A landmark at the sensor itself has no bearing; q is floored so values and Jacobians stay finite there.
 inline constexpr double kMinSquaredRange = 1e-12;
 
+// The predicted range alone, to the bit what range_bearing_predict gives: a landmark can be ruled out of view
+// by its range before the bearing's atan2 and the Jacobians are paid for.
+inline double predicted_range(const Pose2& x, const Vec2& m) {
+  const double dx = m.x() - x.x, dy = m.y() - x.y;
+  return std::sqrt(std::max(dx * dx + dy * dy, kMinSquaredRange));
+}
+
 inline Vec2 range_bearing_predict(const Pose2& x, const Vec2& m, Mat2* J_z_lm = nullptr, Mat23* J_z_pose = nullptr) {
   const double dx = m.x() - x.x, dy = m.y() - x.y;
   const double q = std::max(dx * dx + dy * dy, kMinSquaredRange);
