@@ -455,11 +455,16 @@ PYBIND11_MODULE(_arbor, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const arbor::InputError& e) {
-      // The message, and the file, line and field it names, as attributes.
-      py::object error = py::handle(input_error.ptr())(e.what());
-      error.attr("file") = e.file();
+      // The message, and the file, line and field it names, as attributes. The message may quote the bad
+      // input itself, bytes that are not UTF-8 among them (a 0xFF in a scenario file raised UnicodeDecodeError
+      // instead of this error): they are shown as U+FFFD.
+      const auto text = [](const std::string& s) {
+        return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "replace"));
+      };
+      py::object error = py::handle(input_error.ptr())(text(e.what()));
+      error.attr("file") = text(e.file());
       error.attr("line") = e.line();
-      error.attr("field") = e.field();
+      error.attr("field") = text(e.field());
       PyErr_SetObject(input_error.ptr(), error.ptr());
     }
   });

@@ -138,6 +138,18 @@ def test_the_program_backed_calls_name_file_line_and_field(scenario, tmp_path):
     assert error.value.field == "landmarks", str(error.value)
 
 
+def test_a_byte_that_is_not_utf8_is_an_input_error(scenario, tmp_path):
+    """A 0xFF byte in a scenario file raised UnicodeDecodeError: the error quoted the line, and the quote could
+    not become a Python string."""
+    scenario.save(tmp_path / "good.scn")
+    data = (tmp_path / "good.scn").read_bytes()
+    cut = data.index(b"\nz ") + 1
+    (tmp_path / "bad.scn").write_bytes(data[:cut] + b"\xff\xfe garbage\n" + data[cut:])
+    with pytest.raises(arbor.InputError) as error:
+        arbor.Scenario.load(tmp_path / "bad.scn")
+    assert error.value.file == str(tmp_path / "bad.scn") and error.value.line > 1
+
+
 def test_every_listed_filter_runs(scenario):
     """arbor.filters() is the filter list of the build (variants/filter_list.h), as `arbor run --filter` offers it."""
     help_text = arbor.cli("run", "--help").stdout
