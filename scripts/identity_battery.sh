@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The identity battery: runs one arbor binary over a fixed set of scenarios and options (57 runs, about 10 s on
+# The identity battery: runs one arbor binary over a fixed set of scenarios and options (55 runs, about 10 s on
 # 2 cores), so that a refactor or a speed-up can be shown to leave every output as it was (issue 42).
 # Usage: scripts/identity_battery.sh BINARY OUT_DIR
 # Compare two OUT_DIRs with: scripts/identity_battery.sh --compare DIR_A DIR_B
@@ -97,7 +97,6 @@ run reloc_clustered_nn scn/clustered.scn --relocalize --assoc nn --threads 2 $P
 # Loop closing (known association: the option is a no-op there).
 run loops_jcbb scn/rooms.scn --close-loops --assoc jcbb --map tree --threads 2 --particles 20 --seed 3
 run loops_nn_trie scn/rooms.scn --close-loops --assoc nn --map trie --threads 1 --particles 20 --seed 3
-run loops_known scn/rooms.scn --close-loops --assoc known --map naive --threads 2 --particles 20 --seed 3
 run loops_clustered scn/clustered.scn --close-loops --dormant-scans 20 --loop-drift-m 2 --assoc jcbb --threads 2 $P
 # Resample-move.
 run move_fs2_jcbb scn/clustered.scn --move-window 5 --assoc jcbb --map tree --threads 2 $P
@@ -111,7 +110,6 @@ run gateset_fs1_jcbb scn/clustered.scn --gate-covariance set --filter fastslam1 
 # Pose from confirmed landmarks.
 run pfc_nn scn/clustered.scn --pose-from-confirmed --assoc nn --threads 2 $P
 run pfc_jcbb_steer scn/clustered.scn --pose-from-confirmed --provisional-steer-min 2 --provisional-scans 5 --assoc jcbb --threads 2 $P
-run pfc_known scn/default.scn --pose-from-confirmed --assoc known --threads 2 $P
 # Multi-rate: per-scan prediction (the default) and per-control draws.
 run multirate_perscan_fs2 scn/multirate.scn --motion-sampling per-scan --assoc jcbb --threads 2 $P
 run multirate_percontrol_fs2 scn/multirate.scn --motion-sampling per-control --assoc jcbb --threads 2 $P

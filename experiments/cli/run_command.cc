@@ -25,6 +25,7 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       // marking this directory finished (run_fastslam forgets it too, for callers of the library).
       prepare_run_directory(config->out_dir);
       apply_run_choices(*choices, *config);
+      check_run_option_combinations(*cmd, *config);
       config->progress = !*quiet;
       const Scenario scenario = read_scenario(config->scenario_path);
       const RunOutput out = run_fastslam(scenario, *config);

@@ -324,12 +324,37 @@ void check_run_argument(const std::string& argument) {
 
 }  // namespace
 
+void check_run_option_combinations(const CLI::App& app, const RunConfig& config) {
+  const auto given = [&](const char* name) { return app.get_option(fmt::format("--{}", name))->count() > 0; };
+  // With known association the ids decide what is paired and what exists; these options, which the engine
+  // then ignores, ran silently (issue 44).
+  if (config.assoc == "known")
+    for (const char* name : {"pose-from-confirmed", "close-loops", "provisional-scans"})
+      if (given(name))
+        throw InputError("", 0, name,
+                         fmt::format("--{} does not apply with --assoc known (the ids decide what is paired and what "
+                                     "exists); leave out one of the two",
+                                     name));
+  if (config.assoc != "known" && given("known-gate"))
+    throw InputError("", 0, "known-gate",
+                     fmt::format("--known-gate applies only to --assoc known (--assoc {} gates with --chi2)", config.assoc));
+  if (config.options.move_window > 0) {
+    for (const char* name : {"relocalize", "close-loops"})
+      if (given(name))
+        throw InputError("", 0, "move-window",
+                         fmt::format("--move-window and --{} do not combine: both rewrite the particles' paths", name));
+    if (config.options.motion_sampling != MotionSampling::kPerScan)
+      throw InputError("", 0, "move-window", "--move-window needs --motion-sampling per-scan");
+  }
+}
+
 RunConfig run_config_from_arguments(const std::vector<std::string>& arguments) {
   for (const std::string& a : arguments)
     if (a.starts_with("--")) check_run_argument(a);
   RunOptionParser parser;
   if (std::string error = parser.parse(arguments); !error.empty()) throw InputError("", 0, "", error);
   apply_run_choices(parser.choices, parser.config);
+  check_run_option_combinations(parser.app, parser.config);
   if (parser.config.out_dir == "-") parser.config.out_dir.clear();
   if (parser.config.scenario_path == "-") parser.config.scenario_path.clear();
   return parser.config;

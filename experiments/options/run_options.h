@@ -34,6 +34,11 @@ void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices);
 // Turns the named choices into config's enums; throws InputError naming the option.
 void apply_run_choices(const RunChoices& choices, RunConfig& config);
 
+// Refuses, naming both, options given together that do not combine (an option known association ignores,
+// --known-gate without it, resample-move with relocalisation, loop closing or per-control sampling); app is
+// the command line the config was parsed from, to tell a given option from a default. Throws InputError.
+void check_run_option_combinations(const CLI::App& app, const RunConfig& config);
+
 // result.json's "config": every run option but --out under its own name ('_' for '-'), as the run used it.
 nlohmann::json run_config_json(const RunConfig& config);
 

@@ -255,6 +255,13 @@ std::vector<HostileCase> hostile_cases() {
       {"blowups", "simulate_two_billion_landmarks", no_setup,
        "{arbor} simulate --landmarks 2000000000 --steps 5 --out {dir}/out/s.scn", 2,
        "field 'landmarks': 2000000000 landmarks need at least"},
+      // Options the help says do not combine ran silently, one of them ignored (issue 44): both are named.
+      {"messages", "known_association_with_close_loops", no_setup, kRun + "--assoc known --close-loops", 2,
+       "field 'close-loops': --close-loops does not apply with --assoc known"},
+      {"messages", "known_gate_without_known_association", no_setup, kRun + "--assoc jcbb --known-gate 0.9", 2,
+       "field 'known-gate': --known-gate applies only to --assoc known"},
+      {"messages", "move_window_with_relocalize", no_setup, kRun + "--assoc jcbb --move-window 5 --relocalize", 2,
+       "field 'move-window': --move-window and --relocalize do not combine"},
       {"messages", "utias_landmark_listed_twice",
        dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*6\s[^\n]*\n))", "$1$1"),
        "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,

@@ -1,4 +1,5 @@
 // The run options' descriptors: every option reaches result.json's config under its own name, and only there.
+#include "core/io/input_error.h"
 #include "experiments/options/run_options.h"
 #include "experiments/sweep/sweep_spec.h"
 #include "variants/filter_list.h"
@@ -30,24 +31,35 @@ TEST(RunOptions, ResultConfigHoldsEveryOptionButOutUnderItsOwnName) {
 }
 
 // For every option, some value `arbor run` accepts changes exactly that option's key in the config: a
-// descriptor that records another field, or none, fails here.
+// descriptor that records another field, or none, fails here. Options that known association (the default)
+// refuses are tried beside --assoc=jcbb.
 TEST(RunOptions, EachOptionsValueReachesItsOwnKeyAndNoOther) {
-  const nlohmann::json defaults = run_config_json(run_config_from_arguments({}));
-  const std::vector<std::string> candidates{"0.25",      "0.5",  "3",    "7",           "-3",        "true", "x.scn",
-                                            "fastslam1", "tree", "jcbb", "per-control", "student-t", "set"};
+  const std::vector<std::string> candidates{"0.25", "0.5", "3", "7", "-3", "true",     "x.scn",     "fastslam1",
+                                            "tree", "jcbb", "per-control", "student-t", "set"};
   for (const std::string& name : run_option_names()) {
     if (name == "out" || name == "prior-map") continue;  // --out is not recorded; --prior-map needs a file
     bool changed_alone = false;
-    for (const std::string& value : candidates) {
-      if (!run_option_error(name, value).empty()) continue;
-      const nlohmann::json config = run_config_json(run_config_from_arguments({"--" + name + "=" + value}));
-      std::vector<std::string> differing;
-      for (const auto& [key, v] : config.items())
-        if (defaults[key] != v) differing.push_back(key);
-      if (differing.empty()) continue;  // the candidate was the default
-      EXPECT_EQ(differing, std::vector<std::string>{json_key(name)}) << "--" << name << "=" << value;
-      changed_alone = true;
-      break;
+    for (const std::vector<std::string>& base : {std::vector<std::string>{}, std::vector<std::string>{"--assoc=jcbb"}}) {
+      if (changed_alone || (name == "assoc" && !base.empty())) break;
+      const nlohmann::json defaults = run_config_json(run_config_from_arguments(base));
+      for (const std::string& value : candidates) {
+        if (!run_option_error(name, value).empty()) continue;
+        std::vector<std::string> arguments = base;
+        arguments.push_back("--" + name + "=" + value);
+        nlohmann::json config;
+        try {
+          config = run_config_json(run_config_from_arguments(arguments));
+        } catch (const InputError&) {  // a combination refused (check_run_option_combinations)
+          continue;
+        }
+        std::vector<std::string> differing;
+        for (const auto& [key, v] : config.items())
+          if (defaults[key] != v) differing.push_back(key);
+        if (differing.empty()) continue;  // the candidate was the default
+        EXPECT_EQ(differing, std::vector<std::string>{json_key(name)}) << "--" << name << "=" << value;
+        changed_alone = true;
+        break;
+      }
     }
     EXPECT_TRUE(changed_alone) << "no candidate value of --" << name << " changed result.json's config";
   }
