@@ -176,7 +176,8 @@ def executable():
 def cli(*args, check=True):
     """Runs `arbor ARGS...`; returns its CompletedProcess (stdout and stderr as text). A failure raises
     InputError (exit status 2: bad input or options) or RuntimeError (status 1) with the program's message."""
-    proc = subprocess.run([executable(), *map(str, args)], capture_output=True, text=True)
+    # errors="replace": a message may quote input bytes that are not UTF-8 (a 0xFF in a scenario file).
+    proc = subprocess.run([executable(), *map(str, args)], capture_output=True, text=True, errors="replace")
     if check and proc.returncode != 0:
         message = proc.stderr.strip().removeprefix("arbor: error: ").removeprefix("arbor: failed: ")
         if proc.returncode != 2:

@@ -149,6 +149,9 @@ def test_a_byte_that_is_not_utf8_is_an_input_error(scenario, tmp_path):
     with pytest.raises(arbor.InputError) as error:
         arbor.Scenario.load(tmp_path / "bad.scn")
     assert error.value.file == str(tmp_path / "bad.scn") and error.value.line > 1
+    with pytest.raises(arbor.InputError) as error:  # the program-backed calls too
+        arbor.smooth(tmp_path / "bad.scn")
+    assert error.value.file == str(tmp_path / "bad.scn") and error.value.line > 1
 
 
 def test_every_listed_filter_runs(scenario):
