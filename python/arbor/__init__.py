@@ -14,6 +14,7 @@ Ctrl-C ends them with KeyboardInterrupt. `smooth`, `associate`, `sweep` and `con
 of the same build (`arbor.executable()`) and read back its files.
 """
 
+import contextlib
 import json
 import os
 import re
@@ -114,6 +115,18 @@ class Result:
                 f"seed={c.get('seed')}: ATE {m.get('ate_rmse_m')} m, F1 {m.get('assoc_f1')}>")
 
 
+@contextlib.contextmanager
+def _keyword_fields(options):
+    """An InputError about an option names it as the caller spelt it: close_loops, not --close-loops's name."""
+    try:
+        yield
+    except InputError as error:
+        keyword = str(getattr(error, "field", "")).replace("-", "_")
+        if keyword in options:
+            error.field = keyword
+        raise
+
+
 def run(scenario, **options):
     """Runs FastSLAM over a Scenario (or a scenario file's path) with `arbor run`'s options (filter=, map=,
     assoc=, particles=, seed=, threads=, likelihood=, ...); returns a Result. With out=DIR it also writes the
@@ -121,7 +134,8 @@ def run(scenario, **options):
     if not isinstance(scenario, Scenario):
         options.setdefault("scenario", os.fspath(scenario))
         scenario = Scenario.load(os.fspath(scenario))
-    return Result(_arbor._run(scenario, _arguments(options)))
+    with _keyword_fields(options):
+        return Result(_arbor._run(scenario, _arguments(options)))
 
 
 class Filter:
@@ -134,7 +148,8 @@ class Filter:
     `scenario` supplies the motion and sensor models and the initial pose; its steps are not used."""
 
     def __init__(self, scenario, **options):
-        self._filter = _arbor._Filter(scenario, _arguments(options))
+        with _keyword_fields(options):
+            self._filter = _arbor._Filter(scenario, _arguments(options))
 
     def step(self, time, control, ranges=(), bearings=(), *, scan=None, truth_pose=None):
         """Moves every particle through `control` to `time`, then, when there are measurements (or scan=True:

@@ -112,7 +112,7 @@ def test_a_bad_keyword_is_named_as_the_field(scenario, tmp_path):
                                     (dict(filter=True), "filter", "needs a value"),
                                     (dict(help=True), "help", "not an option"),
                                     (dict(chi2=2), "chi2", "chi2"),
-                                    (dict(assoc="known", close_loops=True), "close-loops", "does not apply")]:
+                                    (dict(assoc="known", close_loops=True), "close_loops", "does not apply")]:
         with pytest.raises(arbor.InputError, match=message) as error:
             arbor.run(scenario, **options)
         assert error.value.field == field, options
