@@ -475,6 +475,21 @@ SweepSpec read_sweep_spec(const std::string& path) {
   }
 
   std::set<std::string> seen;
+  // Options that do not combine (`--assoc known` with `--close-loops`, ...) would fail each such run with exit 2
+  // once the sweep is under way; the grid is refused instead, checked once per distinct combination.
+  std::set<std::string> combinations_checked;
+  const auto check_combination = [&](const RunParams& p) {
+    std::vector<std::string> arguments{"--filter=" + p.filter, "--assoc=" + p.assoc};
+    for (const auto& [name, value] : p.run_options) arguments.push_back("--" + name + "=" + value);
+    std::string combination;
+    for (const std::string& a : arguments) combination += a + "\n";
+    if (!combinations_checked.insert(combination).second) return;
+    try {
+      cli::run_config_from_arguments(arguments);
+    } catch (const InputError& e) {
+      in.fail(line_of(*grid), "grid", fmt::format("run {} combines options that do not combine: {}", p.key(), e.what()));
+    }
+  };
   const auto add = [&](RunParams p) {
     // A batch filter takes none of `arbor run`'s options: one run, whatever they are.
     const bool batch = traits_of(p.filter).is_batch;
@@ -482,6 +497,7 @@ SweepSpec read_sweep_spec(const std::string& path) {
     for (std::size_t i = 0; i < sets; ++i) {
       if (static_cast<std::int64_t>(spec.runs.size()) >= kMaxGridSize) in.fail(line_of(*grid), "grid", "more than a million runs");
       p.run_options = batch ? std::vector<std::pair<std::string, std::string>>{} : option_sets[i];
+      if (!batch) check_combination(p);
       if (seen.insert(p.key()).second) spec.runs.push_back(p);
     }
   };

@@ -215,6 +215,19 @@ TEST(SweepSpec, ABadRunOptionValueNamesItsLineAndFieldWithTheRunCommandsMessage)
   EXPECT_EQ(e.field(), "grid.out");
 }
 
+// A grid that crosses known association with an option it ignores would fail those runs one by one after the
+// sweep started; the spec is refused, naming a run and both options.
+TEST(SweepSpec, OptionsThatDoNotCombineAreRefusedBeforeAnyRun) {
+  ScratchDir dir("spec");
+  const InputError e = error_of(dir, std::string(kGoodSpec) + "close-loops = [false, true]\n");
+  EXPECT_EQ(e.field(), "grid");
+  EXPECT_NE(std::string(e.what()).find("--close-loops does not apply with --assoc known"), std::string::npos) << e.what();
+  // The same option beside a strategy it serves is a grid like any other.
+  std::string text = kGoodSpec;
+  text.replace(text.find("assoc = \"known\""), 15, "assoc = \"nn\"");
+  EXPECT_EQ(spec_from(dir, text + "close-loops = [false, true]\n").runs.size(), 2 * spec_from(dir, text).runs.size());
+}
+
 TEST(SweepSpec, UnknownBackEndNamesItsLineAndField) {
   ScratchDir dir("spec");
   std::string text = kGoodSpec;
