@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/check.h"
+
 namespace arbor {
 
 struct FilterTraits {
@@ -44,6 +46,13 @@ inline constexpr std::array kFilters{
 inline const FilterEntry* find_filter(std::string_view name) {
   const auto* it = std::find_if(kFilters.begin(), kFilters.end(), [&](const FilterEntry& f) { return f.name == name; });
   return it == kFilters.end() ? nullptr : it;
+}
+
+// The entry of a filter whose name was already checked against the list (a sweep spec's, a result row's).
+inline const FilterEntry& listed_filter(std::string_view name) {
+  const FilterEntry* entry = find_filter(name);
+  ARBOR_CHECK(entry, "'{}' is not in variants/filter_list.h", name);
+  return *entry;
 }
 
 // The names of the filters whose traits satisfy keep(traits), in list order.

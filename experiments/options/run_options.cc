@@ -1,14 +1,14 @@
 // The run options, one descriptor each; see run_options.h.
 #include "experiments/options/run_options.h"
 
-#include <fmt/core.h>
-#include <fmt/ranges.h>
-#include <tbb/info.h>
-
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <functional>
 #include <map>
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <tbb/info.h>
 
 #include "core/io/input_error.h"
 #include "experiments/options/option_checks.h"

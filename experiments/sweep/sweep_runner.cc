@@ -210,7 +210,7 @@ std::vector<RunParams> shard_runs(const std::vector<RunParams>& grid, int index,
 std::vector<std::string> run_command(const RunParams& run, const std::string& exe, const std::string& out_dir) {
   const std::string scenario = run.dataset.empty() ? out_dir + "/scenarios/" + run.scenario_name() + ".scn" : run.dataset_path;
   const std::string dir = out_dir + "/runs/" + run.key();
-  const FilterEntry& filter = *find_filter(run.filter);  // the spec reader checked the name
+  const FilterEntry& filter = listed_filter(run.filter);
   if (filter.traits.is_batch)
     return {exe, std::string(filter.command), "--scenario", scenario, "--associations", "known", "--out", dir};
   std::vector<std::string> argv{exe, std::string(filter.command), "--scenario", scenario, "--filter", run.filter};

@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "core/check.h"
 #include "core/io/input_error.h"
 #include "experiments/options/run_options.h"
 #include "variants/filter_list.h"
@@ -224,11 +223,7 @@ auto tie(const RunParams& p) {
 }
 
 // The traits of a filter the spec reader has already checked against the list.
-const FilterTraits& traits_of(std::string_view filter) {
-  const FilterEntry* entry = find_filter(filter);
-  ARBOR_CHECK(entry, "'{}' is not in variants/filter_list.h", filter);
-  return entry->traits;
-}
+const FilterTraits& traits_of(std::string_view filter) { return listed_filter(filter).traits; }
 
 }  // namespace
 
