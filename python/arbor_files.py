@@ -12,6 +12,7 @@ returns in pandas.
 """
 
 import csv
+import io
 import json
 import os
 
@@ -77,16 +78,15 @@ def read_rows(path):
     results.csv gives every value as its text. In results.jsonl the piece after the last newline is an
     interrupted append and is not a row; a line that is not a JSON object raises ValueError naming file and line."""
     path = results_file(path)
-    if path.endswith(".csv"):
-        with open(path, newline="", encoding="utf-8") as f:
-            return list(csv.DictReader(f))
     with open(path, "rb") as f:
         data = f.read()
     try:
         text = data.decode("utf-8")
-    except UnicodeDecodeError as e:
+    except UnicodeDecodeError as e:  # either format: a bare UnicodeDecodeError named neither file nor line
         line = data.count(b"\n", 0, e.start) + 1
         raise ValueError(f"{path}:{line}: byte {e.start} is not UTF-8 text") from None
+    if path.endswith(".csv"):
+        return list(csv.DictReader(io.StringIO(text, newline="")))
     lines = text.split("\n")[:-1]
     rows = []
     for number, line in enumerate(lines, 1):

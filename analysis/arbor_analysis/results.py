@@ -48,7 +48,7 @@ def load_results(path):
     if path.endswith(".csv"):
         try:
             df = pd.read_csv(path)  # arbor_files gives the CSV's cells as text; pandas types its columns
-        except (ValueError, UnicodeDecodeError) as e:  # pandas' parser errors are ValueErrors without the file
+        except ValueError as e:  # pandas' parser errors (and UnicodeDecodeError, one of them) lack the file
             raise ValueError(f"{path}: not a results table ({e})") from None
     else:
         df = pd.DataFrame(arbor_files.read_rows(path))
