@@ -87,11 +87,9 @@ class ScanProblem {
       // (a third of the step at 1000 particles went to candidates never read): the oracle reads only those its
       // measurements' ids name, and a landmark out of range is out of view whatever its bearing. The candidates
       // kept are the same, in the same order, computed the same way.
-      if constexpr (kGroundTruth) {
+      if constexpr (kGroundTruth)
         if (!std::binary_search(scan_ids_.begin(), scan_ids_.end(), lm.truth_label)) continue;
-      } else if (!view_.in_candidate_range(predicted_range(pose, lm.mean), margin)) {
-        continue;
-      }
+      if (beyond_candidate_range(lm, pose, margin)) continue;
       const AssociationCandidate c = candidate(lm, pose, spread);
       if (is_candidate(c.z_hat, margin)) s->problem.candidates.push_back(c);
     }
@@ -106,6 +104,7 @@ class ScanProblem {
     gather_nearby(map, pose, margin.range_m, nearby);
     out->clear();
     for (const Landmark& lm : *nearby) {
+      if (beyond_candidate_range(lm, pose, margin)) continue;
       const Vec2 z_hat = range_bearing_predict(pose, lm.mean);
       if (is_candidate(z_hat, margin)) out->push_back({lm.id, z_hat});
     }
@@ -138,6 +137,11 @@ class ScanProblem {
   }
 
   bool is_candidate(const Vec2& z, const ViewMargin& margin) const { return kGroundTruth || view_.in_candidate_view(z, margin); }
+  // is_candidate's verdict where the range alone settles it, before the bearing's atan2 is paid for:
+  // predicted_range is to the bit the range range_bearing_predict gives.
+  bool beyond_candidate_range(const Landmark& lm, const Pose2& pose, const ViewMargin& margin) const {
+    return !kGroundTruth && !view_.in_candidate_range(predicted_range(pose, lm.mean), margin);
+  }
 
   SensorView view_;
   Mat2 R_;
