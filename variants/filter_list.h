@@ -36,6 +36,11 @@ inline constexpr std::array kFilters{
                 "FastSLAM 2.0: particles drawn from the measurement-informed proposal",
                 {true, true, true, false},
                 "run"},
+    FilterEntry{"ekf",
+                "EKF-SLAM: one Gaussian over pose and map with the full joint covariance, O(N^2) an update; "
+                "deterministic, no particles and no map back end",
+                {false, false, true, false},
+                "run"},
     FilterEntry{"smoother",
                 "Ceres full-SLAM least squares over the whole run, known association",
                 {false, false, false, true},

@@ -28,12 +28,14 @@ bool contains(const std::vector<std::string>& list, std::string_view name) {
 
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
                                     const FastSlamOptions& options) {
-  if (!contains(map_backend_names(), map))
+  const bool ekf = options.version == FilterVersion::kEkf;
+  if (!ekf && !contains(map_backend_names(), map))
     throw InputError("", 0, "map", fmt::format("unknown map back end '{}' (valid: {})", map, fmt::join(map_backend_names(), ", ")));
   if (!contains(association_names(), assoc))
     throw InputError("", 0, "assoc", fmt::format("unknown association strategy '{}' (valid: {})", assoc, fmt::join(association_names(), ", ")));
   const std::string why = options.validate();
   if (!why.empty()) throw InputError("", 0, "options", why);
+  if (ekf) return make_ekf_filter(assoc, scenario, options);
   return make_with_map(MapBackends{}, map, assoc, scenario, options);
 }
 

@@ -22,7 +22,8 @@ using MapBackends = TypeList<VectorMap, PersistentTreeMap, HamtMap<>>;
 // The association strategies are listed once, in variants/association/strategy_list.h; the engine is built
 // for those whose traits say in_filter.
 
-// Builds the engine for the named variants; throws InputError (field "map" or "assoc") listing the valid names.
+// Builds the engine for the named variants and options.version's filter; throws InputError (field "map" or
+// "assoc") listing the valid names. A filter without map back ends (variants/filter_list.h) ignores map.
 std::unique_ptr<Filter> make_filter(std::string_view map, std::string_view assoc, const Scenario& scenario,
                                     const FastSlamOptions& options);
 
@@ -37,6 +38,9 @@ inline std::vector<std::string> association_names() { return filter_strategy_nam
 // The engine instantiations of one map back end with every strategy. Each back end's instantiations live
 // in their own translation unit (variants/engine/filters_<name>.cc, one ARBOR_INSTANTIATE_FILTERS line) so
 // the cross product compiles in parallel, as Ceres spreads its Schur specialisations over files.
+// EKF-SLAM with every strategy usable in the filter (variants/engine/filters_ekf.cc).
+std::unique_ptr<Filter> make_ekf_filter(std::string_view assoc, const Scenario& scenario, const FastSlamOptions& options);
+
 template <LandmarkMap Map>
 std::unique_ptr<Filter> make_filter_for_map(std::string_view assoc, const Scenario& scenario,
                                             const FastSlamOptions& options);

@@ -54,6 +54,7 @@ class FastSlam {
         strategy_(options.association), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
     const std::string why = options.validate();
     ARBOR_CHECK(why.empty(), "{}", why);
+    ARBOR_CHECK(options.version != FilterVersion::kEkf, "EKF-SLAM is core/engine/ekf_slam.h, not this engine");
     ARBOR_CHECK(!options.relocalize || relocalizer, "relocalize is set but no relocalizer was given");
     const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
     const double gate = chi_square_quantile(options.association.gate_probability, 2);

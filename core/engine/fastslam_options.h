@@ -11,7 +11,9 @@
 
 namespace arbor {
 
-enum class FilterVersion { kFastSlam1, kFastSlam2 };
+// The filter a run uses (variants/filter_list.h lists them): FastSLAM 1.0 and 2.0 run this engine; EKF-SLAM
+// (core/engine/ekf_slam.h) reads the same options where they apply to it.
+enum class FilterVersion { kFastSlam1, kFastSlam2, kEkf };
 // per-scan: between scans each particle carries its predicted mean and covariance through every control and
 // draws once per scan (Probabilistic Robotics Table 13.2); per-control: it draws at every control, and FastSLAM
 // 2.0's proposal sees only the last control's covariance (Arbor before the fix; kept as an ablation).
@@ -27,8 +29,8 @@ enum class GateCovariance { kParticle, kSet };
 // The command-line names of each option's values (core/enum_names.h).
 template <>
 struct NamesOf<FilterVersion> {
-  static constexpr EnumNames<FilterVersion, 2> kTable{
-      {{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}}};
+  static constexpr EnumNames<FilterVersion, 3> kTable{
+      {{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}, {FilterVersion::kEkf, "ekf"}}};
 };
 template <>
 struct NamesOf<MotionSampling> {
