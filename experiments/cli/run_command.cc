@@ -13,7 +13,7 @@
 namespace arbor::cli {
 
 void add_run_command(CLI::App& app, CommandAction* action) {
-  auto* cmd = app.add_subcommand("run", "Run FastSLAM on a scenario and write its result files");
+  auto* cmd = app.add_subcommand("run", "Run an online filter (FastSLAM or EKF-SLAM) on a scenario and write its result files");
   auto config = std::make_shared<RunConfig>();
   auto choices = std::make_shared<RunChoices>();
   auto quiet = std::make_shared<bool>(false);
@@ -31,8 +31,10 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       const RunOutput out = run_fastslam(scenario, *config);
       const auto& r = out.result;
       const auto show = [](const nlohmann::json& v) { return v.is_null() ? std::string("n/a") : fmt::format("{:.4g}", v.get<double>()); };
-      fmt::print("{} {} map={} assoc={} particles={} seed={}\n", config->scenario_path, to_string(config->options.version), config->map,
-                 config->assoc, config->options.particles, config->options.seed);
+      const FilterTraits& traits = filter_traits(*config);
+      fmt::print("{} {}{} assoc={}{}\n", config->scenario_path, to_string(config->options.version),
+                 traits.has_map_backends ? " map=" + config->map : "", config->assoc,
+                 traits.has_particles ? fmt::format(" particles={} seed={}", config->options.particles, config->options.seed) : "");
       fmt::print("  ATE RMSE {} m (weighted mean {} m, dead reckoning {} m{})\n", show(r["ate_rmse_m"]),
                  show(r["ate_mean_rmse_m"]), show(r["dead_reckoning_ate_m"]),
                  r["ate_aligned"].get<bool>() ? ", SE(2)-aligned to GPS" : "");

@@ -30,6 +30,9 @@ struct RunOptionDescriptor {
   std::function<Json(const RunConfig&)> record;
   std::function<void(const RunChoices&, RunConfig&)> apply;
   bool is_flag = false;  // a switch: --name alone, or --name=true|false
+  // The filter trait the option needs (variants/filter_list.h), or none: with a filter that lacks it the
+  // option is an error when given and null in result.json (EKF-SLAM has no --particles, no --map).
+  bool FilterTraits::*needs = nullptr;
 };
 
 // The config field an option binds: FIELD(options.seed) reads and writes config.options.seed.
@@ -80,6 +83,13 @@ RunOptionDescriptor choice_option(std::string name, Field field, std::string hel
           }};
 }
 
+// The option, for the filters whose traits have `needs` only.
+RunOptionDescriptor needs(bool FilterTraits::*trait, RunOptionDescriptor option) {
+  option.needs = trait;
+  return option;
+}
+RunOptionDescriptor for_particles(RunOptionDescriptor option) { return needs(&FilterTraits::has_particles, std::move(option)); }
+
 // The option, recorded in result.json by `record` instead.
 RunOptionDescriptor recorded_as(RunOptionDescriptor option, std::function<Json(const RunConfig&)> record) {
   option.record = std::move(record);
@@ -106,53 +116,54 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
        [](const RunConfig& c) { return Json(c.scenario_path); },
        {}},
       choice_option("filter", FIELD(options.version), filters_help(), online_filter_names()),
-      value_option("map", FIELD(map), fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", "))),
+      needs(&FilterTraits::has_map_backends,
+            value_option("map", FIELD(map), fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", ")))),
       value_option("assoc", FIELD(assoc),
                    fmt::format("Data association: {} (known = the scenario's ground-truth ids)",
                                fmt::join(association_names(), ", "))),
-      value_option("particles", FIELD(options.particles), "Number of particles M"),
+      for_particles(value_option("particles", FIELD(options.particles), "Number of particles M")),
       value_option("seed", FIELD(options.seed), "Seed of every random draw of the filter", unsigned_number()),
       recorded_as(value_option("threads", FIELD(options.threads),
                                "Worker threads (0 = all cores); results do not depend on it"),
                   [](const RunConfig& c) {  // what ran, not what was asked: 0 asks for every core
                     return Json(c.options.threads > 0 ? c.options.threads : tbb::info::default_concurrency());
                   }),
-      value_option("resample-threshold", FIELD(options.resample_threshold),
-                   "Resample when N_eff < threshold * particles"),
+      for_particles(value_option("resample-threshold", FIELD(options.resample_threshold),
+                   "Resample when N_eff < threshold * particles")),
       value_option("chi2", FIELD(options.association.gate_probability),
                    "Chi-square gate probability of the association tests", open_probability()),
       value_option("new-landmark-gate", FIELD(options.association.new_landmark_probability),
                    "A measurement outside this chi-square gate of every landmark starts a new one", open_probability()),
-      choice_option("motion-sampling", FIELD(options.motion_sampling),
+      for_particles(choice_option("motion-sampling", FIELD(options.motion_sampling),
                     "per-scan: carry each particle's predicted mean and covariance through every control and draw once "
                     "per scan (the FastSLAM 2.0 proposal and the association see the whole prediction); per-control: "
-                    "draw at every control (the proposal sees only the last control's covariance; an ablation)"),
-      choice_option(
+                    "draw at every control (the proposal sees only the last control's covariance; an ablation)")),
+      for_particles(choice_option(
           "likelihood", FIELD(options.likelihood),
           "Measurement likelihood in the weights, the proposal and the landmark updates: gaussian or student-t "
-          "(heavy tails: an outlier pulls and weighs less)"),
-      value_option("student-dof", FIELD(options.student_dof), "Degrees of freedom of the Student-t likelihood",
-                   within(0.1, 1e6)),
+          "(heavy tails: an outlier pulls and weighs less)")),
+      for_particles(value_option("student-dof", FIELD(options.student_dof), "Degrees of freedom of the Student-t likelihood",
+                   within(0.1, 1e6))),
       value_option("known-gate", FIELD(options.association.known_gate_probability),
                    "With --assoc known, reject (and count) a measurement outside this chi-square gate of the landmark "
                    "its id names; 1 (the default) disables the gate: known association is the oracle",
                    within(1e-6, 1.0)),
-      choice_option("gate-covariance", FIELD(options.gate_covariance),
+      for_particles(choice_option("gate-covariance", FIELD(options.gate_covariance),
                     "Innovation covariance of every gate: particle (each particle's own) or set (plus the weighted "
-                    "spread of the landmark's predicted measurement over the particle set: the drift of a gap)"),
-      value_option("roughen", FIELD(options.roughen),
+                    "spread of the landmark's predicted measurement over the particle set: the drift of a gap)")),
+      for_particles(value_option("roughen", FIELD(options.roughen),
                    "Regularised resampling: after a resampling each particle's prediction gains the kernel "
                    "(roughen * h_opt)^2 times the set's pose covariance (Musso et al. 2001); 0 = off, 1 = h_opt",
-                   within(0.0, 10.0)),
-      value_option("move-window", FIELD(options.move_window),
+                   within(0.0, 10.0))),
+      for_particles(value_option("move-window", FIELD(options.move_window),
                    "Resample-move: after each resampling every particle revises the poses of its last N scans by "
                    "Metropolis-Hastings, pairings fixed and landmarks recomputed (Gilks & Berzuini 2001); 0 = off",
-                   within(0, 10000)),
-      value_option("move-steps", FIELD(options.move_steps), "Resample-move: proposals per particle and resampling",
-                   within(1, 1000)),
-      value_option("move-scale", FIELD(options.move_scale),
+                   within(0, 10000))),
+      for_particles(value_option("move-steps", FIELD(options.move_steps), "Resample-move: proposals per particle and resampling",
+                   within(1, 1000))),
+      for_particles(value_option("move-scale", FIELD(options.move_scale),
                    "Resample-move: the first proposal's step in prediction standard deviations (halved at each next)",
-                   within(1e-6, 100.0)),
+                   within(1e-6, 100.0))),
       value_option("max-hypotheses", FIELD(options.association.max_hypotheses),
                    "Search budget of JCBB and the interpretation trees per particle and scan; a search that reaches it "
                    "answers with its best hypothesis so far and is counted in result.json budget_exhausted",
@@ -169,34 +180,34 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
                    "Drop a landmark still provisional this many scans after the one that started it (0: never); not "
                    "with --assoc known",
                    at_least(0)),
-      flag_option("pose-from-confirmed", FIELD(options.pose_from_confirmed),
+      for_particles(flag_option("pose-from-confirmed", FIELD(options.pose_from_confirmed),
                   "Only confirmed landmarks steer the pose: a measurement paired with a provisional landmark updates "
                   "it, but moves the pose and weighs the particle as an unpaired measurement would (for cluttered "
-                  "sensors); not with --assoc known"),
-      value_option("provisional-steer-min", FIELD(options.provisional_steer_min),
+                  "sensors); not with --assoc known")),
+      for_particles(value_option("provisional-steer-min", FIELD(options.provisional_steer_min),
                    "With --pose-from-confirmed, a scan that pairs no confirmed landmark but at least this many "
                    "provisional ones lets them steer the pose (the second sighting of an unmapped area, above all the "
                    "start; 0: never)",
-                   at_least(0)),
-      flag_option("relocalize", FIELD(options.relocalize),
+                   at_least(0))),
+      for_particles(flag_option("relocalize", FIELD(options.relocalize),
                   "Relocalise a lost robot: when the best particle pairs under half a scan, search its settled map "
                   "with the pose-free locality tree; a pose that pairs more, found again at the next scan, re-seeds "
-                  "every particle (a kidnapped robot, or a loop closure the gates miss)"),
-      value_option("relocalize-min-pairings", FIELD(options.relocalize_min_pairings),
-                   "Pairings a relocalised pose must explain", at_least(3)),
-      value_option("relocalize-accept", FIELD(options.association.accept_explained),
+                  "every particle (a kidnapped robot, or a loop closure the gates miss)")),
+      for_particles(value_option("relocalize-min-pairings", FIELD(options.relocalize_min_pairings),
+                   "Pairings a relocalised pose must explain", at_least(3))),
+      for_particles(value_option("relocalize-accept", FIELD(options.association.accept_explained),
                    "The relocalising search stops at the first pose that explains this fraction of the scan (0: it "
                    "searches to its bound and keeps the best)",
-                   within(0.0, 1.0)),
-      flag_option("close-loops", FIELD(options.close_loops),
+                   within(0.0, 1.0))),
+      for_particles(flag_option("close-loops", FIELD(options.close_loops),
                   "Close loops by re-sighting: a landmark confirmed inside the gate of exactly one dormant landmark "
                   "(unpaired for --dormant-scans scans), widened by --loop-drift-m, is that landmark's drifted copy, "
-                  "and later measurements of the copy update the original; not with --assoc known"),
-      value_option("dormant-scans", FIELD(options.dormant_scans), "Scans unpaired after which a landmark is dormant",
-                   at_least(1)),
-      value_option("loop-drift-m", FIELD(options.loop_drift_m),
+                  "and later measurements of the copy update the original; not with --assoc known")),
+      for_particles(value_option("dormant-scans", FIELD(options.dormant_scans), "Scans unpaired after which a landmark is dormant",
+                   at_least(1))),
+      for_particles(value_option("loop-drift-m", FIELD(options.loop_drift_m),
                    "Position drift (standard deviation per axis) a loop may have built up, for --close-loops",
-                   at_least(1e-6)),
+                   at_least(1e-6))),
       {"prior-map",
        [](CLI::App& cmd, RunConfig& c, RunChoices&) {
          return cmd
@@ -225,6 +236,17 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
 
 }  // namespace
 
+const FilterTraits& filter_traits(const RunConfig& config) { return listed_filter(to_string(config.options.version)).traits; }
+
+namespace {
+
+// Whether the option means something to the configured filter.
+bool applies(const RunOptionDescriptor& option, const RunConfig& config) {
+  return !option.needs || filter_traits(config).*option.needs;
+}
+
+}  // namespace
+
 void add_run_options(CLI::App& cmd, RunConfig& config, RunChoices& choices) {
   for (const RunOptionDescriptor& o : run_option_list()) o.add(cmd, config, choices);
 }
@@ -240,7 +262,7 @@ nlohmann::json run_config_json(const RunConfig& config) {
     if (!o.record) continue;
     std::string key = o.name;
     std::replace(key.begin(), key.end(), '-', '_');
-    out[key] = o.record(config);
+    out[key] = applies(o, config) ? o.record(config) : Json(nullptr);
   }
   return out;
 }
@@ -335,6 +357,12 @@ void check_run_option_combinations(const CLI::App& app, const RunConfig& config)
                          fmt::format("--{} does not apply with --assoc known (the ids decide what is paired and what "
                                      "exists); leave out one of the two",
                                      name));
+  // A filter without particles (or map back ends) has nothing these options could set.
+  for (const RunOptionDescriptor& o : run_option_list())
+    if (!applies(o, config) && given(o.name.c_str()))
+      throw InputError("", 0, o.name,
+                       fmt::format("--{} does not apply to --filter {} ({})", o.name, to_string(config.options.version),
+                                   o.needs == &FilterTraits::has_map_backends ? "it has no map back end" : "it has no particles"));
   if (config.assoc != "known" && given("known-gate"))
     throw InputError("", 0, "known-gate",
                      fmt::format("--known-gate applies only to --assoc known (--assoc {} gates with --chi2)", config.assoc));

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/options/run_config.h"
+#include "variants/filter_list.h"
 
 // Declared, not included: CLI11 is a large header, and the sweep spec reader (and its fuzz target) needs only
 // the two functions at the end, not the command line.
@@ -41,6 +42,9 @@ void check_run_option_combinations(const CLI::App& app, const RunConfig& config)
 
 // result.json's "config": every run option but --out under its own name ('_' for '-'), as the run used it.
 nlohmann::json run_config_json(const RunConfig& config);
+
+// The traits of the filter config.options.version names (variants/filter_list.h).
+const FilterTraits& filter_traits(const RunConfig& config);
 
 // Every run option's name (without "--"), in --help's order.
 std::vector<std::string> run_option_names();

@@ -57,7 +57,8 @@ std::vector<Landmark> read_prior_map(const std::string& path) {
 std::unique_ptr<Filter> make_run_filter(const Scenario& scenario, const RunConfig& config) {
   // 3.3 KB a particle before any landmark (peak RSS 344 MB at 10^5 particles on a 5-step world, tree map):
   // 10^6 particles on a small machine ended in std::bad_alloc.
-  require_memory(config.options.particles, 3000.0, "particles", "particles");
+  if (cli::filter_traits(config).has_particles)
+    require_memory(config.options.particles, 3000.0, "particles", "particles");
   std::unique_ptr<Filter> filter = make_filter(config.map, config.assoc, scenario, config.options);
   if (!config.prior_map_path.empty()) filter->set_prior_map(read_prior_map(config.prior_map_path));
   return filter;
@@ -76,7 +77,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   mean_trajectory.push_back({scenario.start_time_s, filter->estimate().mean});
   double n_eff_sum = 0.0;
   std::int64_t resamples = 0, hypotheses = 0, tests = 0, budget_exhausted = 0, moves_proposed = 0, moves_accepted = 0;
-  Progress progress(fmt::format("run {}/{}/{}", to_string(config.options.version), config.map, config.assoc),
+  Progress progress(fmt::format("run {}/{}", cli::filter_traits(config).has_map_backends ? fmt::format("{}/{}", to_string(config.options.version), config.map)
+                                                                     : std::string(to_string(config.options.version)),
+                                config.assoc),
                     static_cast<std::int64_t>(scenario.steps.size()), config.progress);
 
   for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
@@ -121,7 +124,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
 
   const EvaluationTruth truth = evaluation_truth(scenario);
   const auto ate_mean = absolute_trajectory_error(mean_trajectory, truth.positions, truth.align);
-  const std::size_t particles = static_cast<std::size_t>(config.options.particles);
+  // A filter without particles (EKF-SLAM) is one estimate: its "per particle" figures are its own.
+  const std::size_t particles = cli::filter_traits(config).has_particles ? static_cast<std::size_t>(config.options.particles) : 1;
 
   Json& r = out.result;
   r["config"] = cli::run_config_json(config);  // every run option, under the name the command line gives it

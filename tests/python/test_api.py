@@ -159,7 +159,12 @@ def test_every_listed_filter_runs(scenario):
     help_text = arbor.cli("run", "--help").stdout
     for name in arbor.filters():
         assert name in help_text
-        assert arbor.run(scenario, **dict(RUN, filter=name, assoc="known", particles=5)).config["filter"] == name
+        try:  # a filter without particles or map back ends (EKF-SLAM) refuses those options by name
+            result = arbor.run(scenario, **dict(RUN, filter=name, assoc="known", particles=5))
+        except arbor.InputError as e:
+            assert "does not apply to --filter " + name in str(e)
+            result = arbor.run(scenario, filter=name, assoc="known", seed=3)
+        assert result.config["filter"] == name
 
 
 def read_text_with_a_bad_range(scenario, tmp_path):
