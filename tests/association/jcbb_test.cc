@@ -140,6 +140,40 @@ TEST(Jcbb, PicksTheJointlyConsistentPairingWhereNearestNeighborDoesNot) {
   EXPECT_TRUE(association::joint_compatibility(p, jcbb.pairing, 0.99).compatible);
 }
 
+// The correlation a joint covariance carries and a particle's problem cannot (EKF-SLAM's landmark-landmark
+// terms): two landmarks whose ranges are 99 % correlated, as two landmarks mapped from one uncertain pose are.
+// Each measurement lies two standard deviations out in range, inside its own gate, but one long and the other
+// short, which a common error cannot produce. Nearest neighbour, which tests each pair alone, pairs both;
+// JCBB pairs one of them only.
+TEST(Jcbb, RejectsPairingsThatAreIndividuallyButNotJointlyCompatible) {
+  const double sigma_range = 0.1, sigma_bearing = 0.01, rho = 0.99;
+  AssociationProblem p;
+  p.R = Vec2(sigma_range * sigma_range, sigma_bearing * sigma_bearing).asDiagonal();
+  const Pose2 pose;
+  p.candidates.push_back(testing::make_candidate(4, pose, 10.0 * Vec2(std::cos(0.5), std::sin(0.5)), Mat2::Zero(), p.R));
+  p.candidates.push_back(testing::make_candidate(9, pose, 10.0 * Vec2(std::cos(-0.5), std::sin(-0.5)), Mat2::Zero(), p.R));
+  p.joint_covariance = Eigen::MatrixXd::Zero(4, 4);
+  for (int i = 0; i < 2; ++i) {
+    p.joint_covariance.block<2, 2>(2 * i, 2 * i) = p.R;
+    p.candidates[i].H_pose.setZero();
+  }
+  p.joint_covariance(0, 2) = p.joint_covariance(2, 0) = rho * sigma_range * sigma_range;
+  p.measurements.push_back(testing::make_measurement(10.0 + 2.0 * sigma_range, 0.5));
+  p.measurements.push_back(testing::make_measurement(10.0 - 2.0 * sigma_range, -0.5));
+
+  EXPECT_TRUE(association::joint_compatibility(p, {4, kNewLandmark}, 0.99).compatible);
+  EXPECT_TRUE(association::joint_compatibility(p, {kNewLandmark, 9}, 0.99).compatible);
+  EXPECT_FALSE(association::joint_compatibility(p, {4, 9}, 0.99).compatible);
+  EXPECT_EQ(testing::solve_with<NearestNeighbor>(p).pairing, (std::vector<LandmarkId>{4, 9}));
+
+  const AssociationResult jcbb = testing::solve_with<Jcbb>(p);
+  EXPECT_EQ(pairings(jcbb), 1);
+  EXPECT_TRUE(association::joint_compatibility(p, jcbb.pairing, 0.99).compatible);
+  // Both long (a common error of the map's frame), the same pair is jointly compatible and JCBB takes it.
+  p.measurements[1] = testing::make_measurement(10.0 + 2.0 * sigma_range, -0.5);
+  EXPECT_EQ(testing::solve_with<Jcbb>(p).pairing, (std::vector<LandmarkId>{4, 9}));
+}
+
 // Permuting the observations and the predictions (each prediction keeps its Jacobians) changes no answer.
 TEST(Jcbb, AnswerDoesNotDependOnInputOrder) {
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {

@@ -21,6 +21,7 @@ struct TinyWorldOptions {
   double max_range_m = 8.0;
   MotionModelKind motion = MotionModelKind::kOdometry;
   unsigned seed = 1;
+  double noise_scale = 1.0;  // multiplies every noise standard deviation (odometry and sensor)
 };
 
 // Truth: the robot drives a circle of radius 10 m; landmarks on rings of radius 6 and 14 m. Controls carry
@@ -33,10 +34,11 @@ inline Scenario make_tiny_world(const TinyWorldOptions& o) {
   s.motion.kind = o.motion;
   // About 4 cm along-track and 0.025 rad of heading per 0.79 m step (the velocity and Ackermann models keep
   // their defaults).
-  s.motion.odometry = TwistNoise{1e-6, 1e-6, 2e-3, 8e-4, 0.0};
+  const double variance_scale = o.noise_scale * o.noise_scale;
+  s.motion.odometry = TwistNoise{1e-6 * variance_scale, 1e-6 * variance_scale, 2e-3 * variance_scale, 8e-4 * variance_scale, 0.0};
   s.sensor.max_range_m = o.max_range_m;
-  s.sensor.sigma_range_m = 0.1;
-  s.sensor.sigma_bearing_rad = 0.02;
+  s.sensor.sigma_range_m = 0.1 * o.noise_scale;
+  s.sensor.sigma_bearing_rad = 0.02 * o.noise_scale;
   const double radius = 10.0;
   s.initial_pose = Pose2{radius, 0.0, kPi / 2};
   for (int j = 0; j < o.landmarks; ++j) {
