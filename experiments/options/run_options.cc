@@ -212,7 +212,8 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
        [](CLI::App& cmd, RunConfig& c, RunChoices&) {
          return cmd
              .add_option("--out", c.out_dir,
-                         "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
+                         "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv; "
+                         "reference.tum where the scenario has a ground truth or GPS track)")
              ->required();
        },
        {},
