@@ -208,9 +208,12 @@ _with_run_options(Filter.__init__, [_inspect.Parameter("self", _inspect.Paramete
 # ---- The rest of the command line, through the program of this build ---------------------------------------
 
 def executable():
-    """The `arbor` program built beside this module."""
+    """The `arbor` program of this module's build: $ARBOR_EXECUTABLE, else the copy `pip install` puts in the
+    package, else the build tree's bin/arbor."""
     here = _os.path.dirname(_os.path.abspath(__file__))
-    path = _os.environ.get("ARBOR_EXECUTABLE") or _os.path.join(here, "..", "..", "bin", "arbor")
+    installed = _os.path.join(here, "bin", "arbor")
+    path = _os.environ.get("ARBOR_EXECUTABLE") or (installed if _os.path.exists(installed)
+                                                   else _os.path.join(here, "..", "..", "bin", "arbor"))
     return _os.path.normpath(path)
 
 
