@@ -32,7 +32,7 @@ from . import _arbor
 from . import _options
 
 __all__ = ["InputError", "Scenario", "Result", "Filter", "simulate", "run", "smooth", "associate", "sweep",
-           "convert", "cli", "executable", "map_backends", "association_strategies", "filters", "__version__"]
+           "convert", "cli", "executable", "map_backends", "association_strategies", "filters"]
 
 __version__ = _arbor.__version__  # PEP 440, the build's commit as the local label: 0.1+g2b1f81d
 

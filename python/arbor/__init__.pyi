@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "InputError", "Scenario", "Result", "Filter", "simulate", "run", "smooth", "associate", "sweep",
-    "convert", "cli", "executable", "map_backends", "association_strategies", "filters", "__version__",
+    "convert", "cli", "executable", "map_backends", "association_strategies", "filters",
 ]
 __version__: str
 

@@ -33,8 +33,7 @@ def _typed_default(info):
         return text.lower() in ("true", "1", "on", "yes")
     if not text:
         return None
-    value = _TYPES[info["type"]](text)
-    return value
+    return _TYPES[info["type"]](text)
 
 
 def _read_options():
