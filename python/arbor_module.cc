@@ -8,6 +8,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/filter.h"
+#include "core/io/build_info.h"
 #include "core/io/field_limits.h"
 #include "core/io/input_error.h"
 #include "core/io/scenario_format.h"
@@ -444,6 +446,37 @@ void bind_filter(py::module_& m) {
       .def("best_trajectory", [](const PyFilter& f) { return poses_array(f.filter().best_trajectory()); });
 }
 
+// ---- What the typed API is made from ----------------------------------------------------------------------
+
+// The run options' descriptors (experiments/options/run_options.cc) as dicts: the package builds arbor.run's
+// signature and docs from them, and scripts/generate_python_stub.py the stub.
+py::list run_options() {
+  py::list out;
+  for (const cli::RunOptionInfo& o : cli::run_option_info()) {
+    py::dict d;
+    d["name"] = o.name;
+    d["help"] = o.help;
+    d["type"] = o.type;
+    d["default"] = o.default_text;
+    d["choices"] = o.choices;
+    d["required"] = o.required;
+    out.append(d);
+  }
+  return out;
+}
+
+// PEP 440: the project's version (CMakeLists.txt) with the build's commit as its local label, e.g.
+// 0.1+g2b1f81d, or 0.1+g2b1f81d.dirty when the tree had uncommitted changes.
+std::string version() {
+  std::string commit = git_commit();
+  const bool dirty = commit.ends_with('+');
+  if (dirty) commit.pop_back();
+  for (char c : commit)
+    if (!std::isxdigit(static_cast<unsigned char>(c))) return ARBOR_VERSION;  // "unknown": no label
+  if (commit.empty()) return ARBOR_VERSION;
+  return fmt::format("{}+g{}{}", ARBOR_VERSION, commit, dirty ? ".dirty" : "");
+}
+
 }  // namespace
 }  // namespace arbor::python
 
@@ -471,6 +504,8 @@ PYBIND11_MODULE(_arbor, m) {
   m.def("map_backends", &arbor::map_backend_names, "The map back ends, as --map names them");
   m.def("association_strategies", &arbor::association_names, "The association strategies usable in the filter");
   m.def("filters", &arbor::online_filter_names, "The filters arbor.run and arbor.Filter run (variants/filter_list.h)");
+  m.def("_run_options", &run_options, "The run options' descriptors, in `arbor run --help`'s order");
+  m.attr("__version__") = version();
   bind_scenario(m);
   bind_run(m);
   bind_filter(m);

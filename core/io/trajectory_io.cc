@@ -8,6 +8,7 @@
 
 #include <fmt/core.h>
 
+#include "core/check.h"
 #include "core/io/atomic_file.h"
 #include "core/io/field_limits.h"
 #include "core/io/input_error.h"
@@ -17,7 +18,14 @@ namespace arbor {
 
 std::string format_tum(const std::vector<TimedPose>& trajectory) {
   std::string out;
-  for (const TimedPose& p : trajectory) {
+  for (std::size_t i = 0; i < trajectory.size(); ++i) {
+    const TimedPose& p = trajectory[i];
+    ARBOR_CHECK(i == 0 || p.time_s >= trajectory[i - 1].time_s, "TUM row {} goes back in time: {} after {}", i,
+                p.time_s, trajectory[i - 1].time_s);
+    // A TUM file maps a time to one pose, and evo refuses a repeated time ("not ascending"). Several states can
+    // share a time (the initial pose and a first scan at the start time, controls with equal stamps); the
+    // last of them is the estimate at that time, so only it is written.
+    if (i + 1 < trajectory.size() && trajectory[i + 1].time_s == p.time_s) continue;
     // A rotation by theta about z: q = (0, 0, sin(theta/2), cos(theta/2)).
     fmt::format_to(std::back_inserter(out), "{} {} {} 0 0 0 {} {}\n", p.time_s, p.pose.x, p.pose.y,
                    std::sin(0.5 * p.pose.theta), std::cos(0.5 * p.pose.theta));

@@ -11,6 +11,8 @@
 
 namespace arbor {
 
+// Timestamps strictly ascending, as evo requires: of the poses that share a time only the last is written.
+// The trajectory's times must not decrease (checked).
 std::string format_tum(const std::vector<TimedPose>& trajectory);
 void write_tum(const std::string& path, const std::vector<TimedPose>& trajectory);
 // Throws InputError naming file, line and field.

@@ -66,7 +66,8 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
                   "many poses; 0: never")
       ->capture_default_str();
   cmd->add_option("--g2o", config->g2o_path, "Also write the problem (initial values, factors) as a g2o file");
-  cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv)")->required();
+  cmd->add_option("--out", config->out_dir, "Output directory (result.json, trajectory.tum, map.csv; reference.tum where the "
+                  "scenario has a ground truth or GPS track)")->required();
   cmd->add_flag("--verbose", config->options.verbose, "Ceres's per-iteration log");
   cmd->add_flag("--quiet", *quiet, "No summary on stdout");
   cmd->callback([=] {

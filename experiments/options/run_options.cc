@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -30,6 +31,7 @@ struct RunOptionDescriptor {
   std::function<Json(const RunConfig&)> record;
   std::function<void(const RunChoices&, RunConfig&)> apply;
   bool is_flag = false;  // a switch: --name alone, or --name=true|false
+  std::vector<std::string> choices;  // the names a named value accepts; empty: any value of its type
   // The filter trait the option needs (variants/filter_list.h), or none: with a filter that lacks it the
   // option is an error when given and null in result.json (EKF-SLAM has no --particles, no --map).
   bool FilterTraits::*needs = nullptr;
@@ -66,12 +68,12 @@ RunOptionDescriptor flag_option(std::string name, Field field, std::string help)
 template <class Field>
 RunOptionDescriptor choice_option(std::string name, Field field, std::string help,
                                   std::vector<std::string> allowed = {}) {
+  using Enum = std::remove_reference_t<decltype(field(std::declval<RunConfig&>()))>;
+  std::vector<std::string> names = allowed;
+  if (names.empty())
+    for (const auto& [value, n] : NamesOf<Enum>::kTable) names.emplace_back(n);
   return {name,
           [=](CLI::App& cmd, RunConfig& c, RunChoices& choices) {
-            using Enum = std::remove_reference_t<decltype(field(c))>;
-            std::vector<std::string> names = allowed;
-            if (names.empty())
-              for (const auto& [value, n] : NamesOf<Enum>::kTable) names.emplace_back(n);
             std::string& chosen = choices.chosen[name] = std::string(to_string(field(c)));
             return cmd.add_option("--" + name, chosen, help)->check(CLI::IsMember(names))->capture_default_str();
           },
@@ -80,7 +82,15 @@ RunOptionDescriptor choice_option(std::string name, Field field, std::string hel
             const auto it = choices.chosen.find(name);
             if (it != choices.chosen.end() && !from_string(it->second, &field(c)))
               throw InputError("", 0, name, fmt::format("unknown {} '{}'", name, it->second));
-          }};
+          },
+          /*is_flag=*/false,
+          names};
+}
+
+// A value option whose value is one of `names`, checked where the run looks it up (the registry's lists).
+RunOptionDescriptor one_of(RunOptionDescriptor option, std::vector<std::string> names) {
+  option.choices = std::move(names);
+  return option;
 }
 
 // The option, for the filters whose traits have `needs` only.
@@ -117,10 +127,12 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
        {}},
       choice_option("filter", FIELD(options.version), filters_help(), online_filter_names()),
       needs(&FilterTraits::has_map_backends,
-            value_option("map", FIELD(map), fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", ")))),
-      value_option("assoc", FIELD(assoc),
-                   fmt::format("Data association: {} (known = the scenario's ground-truth ids)",
-                               fmt::join(association_names(), ", "))),
+            one_of(value_option("map", FIELD(map), fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", "))),
+                   map_backend_names())),
+      one_of(value_option("assoc", FIELD(assoc),
+                          fmt::format("Data association: {} (known = the scenario's ground-truth ids)",
+                                      fmt::join(association_names(), ", "))),
+             association_names()),
       for_particles(value_option("particles", FIELD(options.particles), "Number of particles M")),
       value_option("seed", FIELD(options.seed), "Seed of every random draw of the filter", unsigned_number()),
       recorded_as(value_option("threads", FIELD(options.threads),
@@ -223,7 +235,8 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
        [](CLI::App& cmd, RunConfig& c, RunChoices&) {
          return cmd
              .add_option("--out", c.out_dir,
-                         "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv)")
+                         "Output directory (result.json, trajectory.tum, map.csv, associations.csv, steps.csv; "
+                         "reference.tum where the scenario has a ground truth or GPS track)")
              ->required();
        },
        {},
@@ -271,6 +284,25 @@ std::vector<std::string> run_option_names() {
   std::vector<std::string> names;
   for (const RunOptionDescriptor& o : run_option_list()) names.push_back(o.name);
   return names;
+}
+
+// The type a Python caller passes: the JSON type result.json records the default config's value as (a
+// path that is not set records null; --out is not recorded at all).
+std::vector<RunOptionInfo> run_option_info() {
+  CLI::App app;
+  RunConfig config;
+  RunChoices choices;
+  std::vector<RunOptionInfo> out;
+  for (const RunOptionDescriptor& d : run_option_list()) {
+    const CLI::Option* o = d.add(app, config, choices);
+    RunOptionInfo info{d.name, o->get_description(), "str", o->get_default_str(), d.choices, o->get_required()};
+    const Json recorded = d.record ? d.record(config) : Json(nullptr);
+    if (d.is_flag || recorded.is_boolean()) info.type = "bool";
+    else if (recorded.is_number_integer()) info.type = "int";
+    else if (recorded.is_number_float()) info.type = "float";
+    out.push_back(std::move(info));
+  }
+  return out;
 }
 
 namespace {

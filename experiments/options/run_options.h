@@ -49,6 +49,19 @@ const FilterTraits& filter_traits(const RunConfig& config);
 // Every run option's name (without "--"), in --help's order.
 std::vector<std::string> run_option_names();
 
+// One run option as a user of the Python API sees it: arbor.run's and arbor.Filter's keyword signature, their
+// per-option docs and the typed stub (scripts/generate_python_stub.py) are made from these, so they cannot
+// drift from the command line.
+struct RunOptionInfo {
+  std::string name;                  // as on the command line, without "--"
+  std::string help;                  // --help's text
+  std::string type;                  // the value's type: "bool" (a switch), "int", "float" or "str"
+  std::string default_text;          // --help's default; empty where there is none
+  std::vector<std::string> choices;  // the names a named value accepts (--filter, --map, ...); empty: any
+  bool required = false;             // on the command line (--scenario, --out)
+};
+std::vector<RunOptionInfo> run_option_info();
+
 // Parses `--name=value` arguments as `arbor run` parses its command line (the same names, defaults and
 // checks; --scenario and --out may be left out) and applies the choices. The Python API's arbor.run and
 // arbor.Filter take their keyword arguments this way. Throws InputError with CLI11's message.

@@ -14,6 +14,7 @@
 #include "core/metrics/trajectory_metrics.h"
 #include "experiments/options/run_options.h"
 #include "experiments/run/progress.h"
+#include "experiments/run/reference_trajectory.h"
 #include "experiments/run/result_fields.h"
 #include "variants/registry.h"
 
@@ -115,6 +116,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   progress.finish();
 
   const std::vector<TimedPose>& best = out.best_trajectory = filter->best_trajectory();
+  out.reference = reference_trajectory(scenario);
   // The filter's map is its confirmed landmarks; provisional ones are counted apart.
   std::vector<Landmark>& map = out.map = filter->best_map();
   const std::size_t provisional_landmarks = std::erase_if(map, [](const Landmark& lm) { return !lm.confirmed; });
@@ -181,6 +183,7 @@ void write_run_files(const RunOutput& output, const std::string& out_dir) {
   const std::string dir = out_dir + "/";
   write_tum(dir + "trajectory.tum", output.best_trajectory);
   write_tum(dir + "trajectory_mean.tum", output.mean_trajectory);
+  write_reference_tum(output.reference, out_dir);
   write_map_csv(dir + "map.csv", output.map);
   write_file_atomically(dir + "steps.csv", steps_csv(output.steps));
   write_file_atomically(dir + "associations.csv", associations_csv(output.decisions));

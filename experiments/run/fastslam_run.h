@@ -1,6 +1,7 @@
 // One FastSLAM run from a scenario to its result files (DESIGN.md §9): DIR/result.json, DIR/trajectory.tum
 // (best particle), DIR/trajectory_mean.tum (weighted mean), DIR/map.csv (best particle's map),
-// DIR/associations.csv (best particle's decisions) and DIR/steps.csv (per-step time, N_eff, landmarks, NEES).
+// DIR/associations.csv (best particle's decisions), DIR/steps.csv (per-step time, N_eff, landmarks, NEES) and,
+// where the scenario has a ground truth or GPS track, DIR/reference.tum (experiments/run/reference_trajectory.h).
 #ifndef ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 #define ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 
@@ -40,6 +41,7 @@ struct RunOutput {
   std::vector<double> nees;              // per scan with a truth pose (and some pose uncertainty)
   std::vector<TimedPose> best_trajectory;
   std::vector<TimedPose> mean_trajectory;  // the weighted mean, at the start and at every scan or truth pose
+  std::vector<TimedPose> reference;        // what the ATE is measured against; empty without truth or GPS
   std::vector<Landmark> map;             // the best particle's confirmed landmarks, ascending id
   std::vector<StepDecisions> decisions;  // the best particle's
   std::vector<StepRecord> steps;         // one per scenario step
@@ -53,7 +55,8 @@ std::unique_ptr<Filter> make_run_filter(const Scenario& scenario, const RunConfi
 // config.out_dir is set. Throws InputError for invalid names or options.
 RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config);
 
-// Writes DIR/trajectory.tum, trajectory_mean.tum, map.csv, steps.csv, associations.csv, and result.json last.
+// Writes DIR/trajectory.tum, trajectory_mean.tum, reference.tum, map.csv, steps.csv, associations.csv, and
+// result.json last.
 void write_run_files(const RunOutput& output, const std::string& dir);
 
 }  // namespace arbor

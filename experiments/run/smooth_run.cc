@@ -15,6 +15,7 @@
 #include "core/io/trajectory_io.h"
 #include "core/metrics/run_statistics.h"
 #include "core/metrics/trajectory_metrics.h"
+#include "experiments/run/reference_trajectory.h"
 #include "experiments/run/result_fields.h"
 #include "variants/smoothing/g2o_writer.h"
 #include "experiments/loaders/isam_factor_graph.h"
@@ -222,6 +223,7 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
     std::filesystem::create_directories(config.out_dir);
     const std::string dir = config.out_dir + "/";
     write_tum(dir + "trajectory.tum", trajectory);
+    write_reference_tum(reference_trajectory(scenario), config.out_dir);
     write_map_csv(dir + "map.csv", map);
     write_file_atomically(dir + "result.json", r.dump(2) + "\n");  // last: its presence means complete
   }

@@ -14,22 +14,27 @@ Ctrl-C ends them with KeyboardInterrupt. `smooth`, `associate`, `sweep` and `con
 of the same build (`arbor.executable()`) and read back its files.
 """
 
-import contextlib
-import json
-import os
-import re
-import subprocess
-import tempfile
+# Imports under private names: `from arbor import *`, dir(arbor) and tab completion offer the API only.
+import contextlib as _contextlib
+import inspect as _inspect
+import json as _json
+import os as _os
+import re as _re
+import subprocess as _subprocess
+import tempfile as _tempfile
 
-import numpy as np
+import numpy as _np
 
-import arbor_files  # beside this package in build/python: the reader of the files below, shared with analysis/
+import arbor_files as _files  # beside this package (build/python, or site-packages): shared with analysis/
 
 from ._arbor import InputError, Scenario, association_strategies, filters, map_backends
 from . import _arbor
+from . import _options
 
 __all__ = ["InputError", "Scenario", "Result", "Filter", "simulate", "run", "smooth", "associate", "sweep",
            "convert", "cli", "executable", "map_backends", "association_strategies", "filters"]
+
+__version__ = _arbor.__version__  # PEP 440, the build's commit as the local label: 0.1+g2b1f81d
 
 
 def _arguments(options):
@@ -42,7 +47,7 @@ def _arguments(options):
             continue
         if value is True:
             out.append(name)
-        elif isinstance(value, (list, tuple, np.ndarray)):
+        elif isinstance(value, (list, tuple, _np.ndarray)):
             out.append(name)
             out.extend(repr(float(v)) if isinstance(v, float) else str(v) for v in value)
         else:
@@ -68,7 +73,7 @@ def _from_arrays(times, controls, measurements=None, *, like=None, scans=None, t
     """
     if like is None:
         like = _default_header()
-    return Scenario._from_arrays(like, np.asarray(times, dtype=float), np.asarray(controls, dtype=float), scans,
+    return Scenario._from_arrays(like, _np.asarray(times, dtype=float), _np.asarray(controls, dtype=float), scans,
                                  measurements, truth_poses, truth_landmarks, metadata or {})
 
 
@@ -92,7 +97,7 @@ class Result:
 
     def __init__(self, output):
         self._output = output
-        self.metrics = json.loads(output.result_json)
+        self.metrics = _json.loads(output.result_json)
         self.trajectory = output.trajectory
         self.trajectory_mean = output.trajectory_mean
         self.map = output.map
@@ -104,9 +109,13 @@ class Result:
             return metrics[name]
         raise AttributeError(f"Result has no field {name!r}; result.json has: {', '.join(sorted(metrics))}")
 
+    def __dir__(self):
+        """The result.json fields too, so that dir() and tab completion offer them."""
+        return sorted(set(super().__dir__()) | set(self.__dict__.get("metrics", {})))
+
     def to_dir(self, path):
         """Writes the files `arbor run --out PATH` writes (result.json last)."""
-        self._output.to_dir(os.fspath(path))
+        self._output.to_dir(_os.fspath(path))
 
     def __repr__(self):
         m = self.metrics
@@ -115,7 +124,7 @@ class Result:
                 f"seed={c.get('seed')}: ATE {m.get('ate_rmse_m')} m, F1 {m.get('assoc_f1')}>")
 
 
-@contextlib.contextmanager
+@_contextlib.contextmanager
 def _keyword_fields(options):
     """An InputError about an option names it as the caller spelt it: close_loops, not --close-loops's name."""
     try:
@@ -130,10 +139,11 @@ def _keyword_fields(options):
 def run(scenario, **options):
     """Runs FastSLAM over a Scenario (or a scenario file's path) with `arbor run`'s options (filter=, map=,
     assoc=, particles=, seed=, threads=, likelihood=, ...); returns a Result. With out=DIR it also writes the
-    run's files there, as `arbor run --out DIR` does."""
+    run's files there, as `arbor run --out DIR` does. An option left out takes the command line's default."""
+    _options.check_keywords("run", options, _options.RUN_KEYWORDS)
     if not isinstance(scenario, Scenario):
-        options.setdefault("scenario", os.fspath(scenario))
-        scenario = Scenario.load(os.fspath(scenario))
+        options.setdefault("scenario", _os.fspath(scenario))
+        scenario = Scenario.load(_os.fspath(scenario))
     with _keyword_fields(options):
         return Result(_arbor._run(scenario, _arguments(options)))
 
@@ -148,15 +158,17 @@ class Filter:
     `scenario` supplies the motion and sensor models and the initial pose; its steps are not used."""
 
     def __init__(self, scenario, **options):
+        """A filter over `scenario`'s models and initial pose, with arbor.run's options (but out=)."""
+        _options.check_keywords("Filter", options, _options.FILTER_KEYWORDS)
         with _keyword_fields(options):
             self._filter = _arbor._Filter(scenario, _arguments(options))
 
     def step(self, time, control, ranges=(), bearings=(), *, scan=None, truth_pose=None):
         """Moves every particle through `control` to `time`, then, when there are measurements (or scan=True:
         a scan that saw nothing), associates and updates."""
-        ranges = np.asarray(ranges, dtype=float)
-        self._filter.step(float(time), np.asarray(control, dtype=float), ranges,
-                          np.asarray(bearings, dtype=float), bool(scan if scan is not None else ranges.size > 0),
+        ranges = _np.asarray(ranges, dtype=float)
+        self._filter.step(float(time), _np.asarray(control, dtype=float), ranges,
+                          _np.asarray(bearings, dtype=float), bool(scan if scan is not None else ranges.size > 0),
                           truth_pose)
 
     def particles(self):
@@ -179,20 +191,37 @@ class Filter:
         return self._filter.last_step()
 
 
+def _with_run_options(function, first, options, returns):
+    """Gives `function` (which takes **options) the options' keyword signature and their docs, for help(),
+    inspect.signature and the completion of editors that run the code; the stub gives type checkers the same."""
+    function.__signature__ = _options.signature(first, options, returns)
+    function.__doc__ = _inspect.cleandoc(function.__doc__) + "\n\n" + _options.options_doc(options)
+
+
+_SCENARIO = _inspect.Parameter("scenario", _inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                               annotation="Scenario | str | os.PathLike")
+_with_run_options(run, [_SCENARIO], _options.RUN_KEYWORDS, Result)
+_with_run_options(Filter.__init__, [_inspect.Parameter("self", _inspect.Parameter.POSITIONAL_OR_KEYWORD), _SCENARIO],
+                  _options.FILTER_KEYWORDS, None)
+
+
 # ---- The rest of the command line, through the program of this build ---------------------------------------
 
 def executable():
-    """The `arbor` program built beside this module."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    path = os.environ.get("ARBOR_EXECUTABLE") or os.path.join(here, "..", "..", "bin", "arbor")
-    return os.path.normpath(path)
+    """The `arbor` program of this module's build: $ARBOR_EXECUTABLE, else the copy `pip install` puts in the
+    package, else the build tree's bin/arbor."""
+    here = _os.path.dirname(_os.path.abspath(__file__))
+    installed = _os.path.join(here, "bin", "arbor")
+    path = _os.environ.get("ARBOR_EXECUTABLE") or (installed if _os.path.exists(installed)
+                                                   else _os.path.join(here, "..", "..", "bin", "arbor"))
+    return _os.path.normpath(path)
 
 
 def cli(*args, check=True):
     """Runs `arbor ARGS...`; returns its CompletedProcess (stdout and stderr as text). A failure raises
     InputError (exit status 2: bad input or options) or RuntimeError (status 1) with the program's message."""
     # errors="replace": a message may quote input bytes that are not UTF-8 (a 0xFF in a scenario file).
-    proc = subprocess.run([executable(), *map(str, args)], capture_output=True, text=True, errors="replace")
+    proc = _subprocess.run([executable(), *map(str, args)], capture_output=True, text=True, errors="replace")
     if check and proc.returncode != 0:
         message = proc.stderr.strip().removeprefix("arbor: error: ").removeprefix("arbor: failed: ")
         if proc.returncode != 2:
@@ -203,7 +232,7 @@ def cli(*args, check=True):
 
 # The program's error line, as core/io/input_error.h writes it: [FILE[:LINE]: ][field 'NAME': ]MESSAGE, or
 # CLI11's --option: MESSAGE.
-_ERROR_LINE = re.compile(r"^(?:(?P<file>[^\n]*?)(?::(?P<line>\d+))?: )?field '(?P<field>[^']*)': |^(?P<option>--[\w-]+): ")
+_ERROR_LINE = _re.compile(r"^(?:(?P<file>[^\n]*?)(?::(?P<line>\d+))?: )?field '(?P<field>[^']*)': |^(?P<option>--[\w-]+): ")
 
 
 def _input_error(message):
@@ -218,36 +247,36 @@ def _input_error(message):
 
 def _scenario_path(scenario, tmp):
     if isinstance(scenario, Scenario):
-        path = os.path.join(tmp, "scenario.scn")
+        path = _os.path.join(tmp, "scenario.scn")
         scenario.save(path)
         return path
-    return os.fspath(scenario)
+    return _os.fspath(scenario)
 
 
 def smooth(scenario, associations="known", out=None, **options):
     """The Ceres full-SLAM smoother (`arbor smooth`): associations "known", a Result's directory, or a run
     directory. Returns (result.json as a dict, trajectory N x 4, map dict of columns)."""
-    with tempfile.TemporaryDirectory() as tmp:
-        out = os.fspath(out) if out else os.path.join(tmp, "smooth")
-        cli("smooth", "--scenario", _scenario_path(scenario, tmp), "--associations", os.fspath(associations),
+    with _tempfile.TemporaryDirectory() as tmp:
+        out = _os.fspath(out) if out else _os.path.join(tmp, "smooth")
+        cli("smooth", "--scenario", _scenario_path(scenario, tmp), "--associations", _os.fspath(associations),
             "--out", out, *_arguments(options))
-        return (arbor_files.read_result(out), arbor_files.read_tum(os.path.join(out, "trajectory.tum")),
-                arbor_files.read_map(os.path.join(out, "map.csv")))
+        return (_files.read_result(out), _files.read_tum(_os.path.join(out, "trajectory.tum")),
+                _files.read_map(_os.path.join(out, "map.csv")))
 
 
 def associate(problem, assoc="jcbb", **options):
     """Solves one association problem file (`arbor associate --problem FILE`); returns the command's output."""
-    return cli("associate", "--problem", os.fspath(problem), "--assoc", assoc, *_arguments(options)).stdout
+    return cli("associate", "--problem", _os.fspath(problem), "--assoc", assoc, *_arguments(options)).stdout
 
 
 def convert(source, out, **options):
     """`arbor convert --from SOURCE --out OUT ...`; returns the Scenario it wrote."""
-    cli("convert", "--from", source, "--out", os.fspath(out), *_arguments(options))
-    return Scenario.load(os.fspath(out))
+    cli("convert", "--from", source, "--out", _os.fspath(out), *_arguments(options))
+    return Scenario.load(_os.fspath(out))
 
 
 def sweep(spec, out, jobs=1, **options):
     """Runs a sweep spec (`arbor sweep SPEC --out OUT --jobs J`, resumable); returns results.csv as a list of
     dicts (analysis/arbor_analysis/results.py reads it into pandas)."""
-    cli("sweep", os.fspath(spec), "--out", os.fspath(out), "--jobs", jobs, *_arguments(options))
-    return arbor_files.read_rows(os.path.join(os.fspath(out), "results.csv"))
+    cli("sweep", _os.fspath(spec), "--out", _os.fspath(out), "--jobs", jobs, *_arguments(options))
+    return _files.read_rows(_os.path.join(_os.fspath(out), "results.csv"))

@@ -91,7 +91,7 @@ def test_bad_input_raises_input_error_naming_the_field(scenario, tmp_path):
         arbor.run(scenario, particles=0)
     with pytest.raises(arbor.InputError, match="moon"):
         arbor.simulate(world="moon")
-    with pytest.raises(arbor.InputError, match="no-such-option"):
+    with pytest.raises(arbor.InputError, match="no_such_option"):
         arbor.run(scenario, no_such_option=1)
     z = dict(scenario.measurements)
     z["range"] = z["range"].copy()
@@ -108,7 +108,7 @@ def test_bad_input_raises_input_error_naming_the_field(scenario, tmp_path):
 def test_a_bad_keyword_is_named_as_the_field(scenario, tmp_path):
     """A misspelt keyword was reported as "--asoc=jcbb", filter=True as "--scenario=- not in {...}" and help=True
     with CLI11's internal message, each with an empty field; a garbage prior map passed to Filter was ignored."""
-    for options, field, message in [(dict(asoc="jcbb"), "asoc", "did you mean 'assoc'"),
+    for options, field, message in [(dict(asoc="jcbb"), "asoc", "did you mean assoc="),
                                     (dict(filter=True), "filter", "needs a value"),
                                     (dict(help=True), "help", "not an option"),
                                     (dict(chi2=2), "chi2", "chi2"),
