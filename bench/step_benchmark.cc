@@ -17,6 +17,7 @@
 
 #include "bench/live_bytes.h"
 #include "bench/map_world.h"
+#include "core/engine/ekf_slam.h"
 #include "core/engine/fastslam.h"
 #include "variants/registry.h"
 
@@ -90,6 +91,52 @@ void BM_FastSlam_Step(benchmark::State& state) {
       (pool >= 0 ? static_cast<double>(pool) : static_cast<double>(total.bytes)) / particles;
 }
 
+// EKF-SLAM's step on the same worlds, from the same prior map: the O(N^2) update Probabilistic Robotics
+// §13.8 sets against FastSLAM's O(M log N). Its state is (3 + 2N)^2 doubles, 3.2 GB at N = 10^4, and a step
+// there takes seconds, so it stops at ARBOR_BENCH_EKF_MAX_N (10^4) and times fewer steps.
+constexpr int kEkfWarmupSteps = 3;
+constexpr int kEkfTimedSteps = 12;
+
+void BM_Ekf_Step(benchmark::State& state) {
+  const std::int64_t n = state.range(0);
+  const auto field = make_landmark_field(n);
+  FieldDrive drive;
+  drive.radius_m = std::min(0.3 * field_side_m(n), 100.0);
+  drive.steps = kEkfWarmupSteps + kEkfTimedSteps;
+  const Scenario scenario = make_field_scenario(field, drive);
+  FastSlamOptions options;
+  options.version = FilterVersion::kEkf;
+  EkfSlam<VectorMap, KnownAssociation> engine(scenario, options);
+  engine.set_prior_map(field);
+  int k = 0;
+  for (; k < kEkfWarmupSteps; ++k) engine.step(scenario.steps[k]);
+  std::vector<double> seconds;
+  std::int64_t measurements = 0;
+  for (auto _ : state) {
+    const double cpu_start = process_cpu_s();
+    engine.step(scenario.steps[k]);
+    seconds.push_back(process_cpu_s() - cpu_start);
+    state.SetIterationTime(seconds.back());
+    measurements += static_cast<std::int64_t>(scenario.steps[k].measurements.size());
+    ++k;
+  }
+  std::sort(seconds.begin(), seconds.end());
+  state.counters["step_median_s"] = seconds[seconds.size() / 2];
+  state.counters["step_p95_s"] = seconds[std::min(seconds.size() - 1, seconds.size() * 95 / 100)];
+  state.counters["measurements_per_step"] = static_cast<double>(measurements) / seconds.size();
+  state.counters["landmarks_best"] = static_cast<double>(engine.last_step_stats().best_landmarks);
+  state.counters["bytes_per_particle"] = static_cast<double>(engine.state().bytes());  // the one estimate's
+}
+
+void register_ekf() {
+  const char* max = std::getenv("ARBOR_BENCH_EKF_MAX_N");
+  const std::int64_t max_n = max ? std::atoll(max) : 10000;
+  auto* b = benchmark::RegisterBenchmark("BM_FastSlam_Step/backend:ekf", BM_Ekf_Step);
+  b->ArgNames({"n"})->UseManualTime()->Iterations(kEkfTimedSteps)->Unit(benchmark::kMicrosecond);
+  for (std::int64_t n : {100, 300, 1000, 3000, 10000, 30000})
+    if (n <= max_n) b->Args({n});
+}
+
 template <class... Maps>
 void register_all(TypeList<Maps...>) {
   auto env = [](const char* name, int fallback) { return std::getenv(name) ? std::atoi(std::getenv(name)) : fallback; };
@@ -112,6 +159,7 @@ void register_all(TypeList<Maps...>) {
 
 int main(int argc, char** argv) {
   arbor::bench::register_all(arbor::MapBackends{});
+  arbor::bench::register_ekf();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -19,7 +19,7 @@ import numpy as np  # noqa: E402
 
 NAME = re.compile(r"^(?P<bench>BM_\w+)/backend:(?P<backend>\w+)/n:(?P<n>\d+)")
 FIT_MIN_N = 1000
-COLORS = {"naive": "tab:red", "tree": "tab:blue", "trie": "tab:green"}
+COLORS = {"naive": "tab:red", "tree": "tab:blue", "trie": "tab:green", "ekf": "tab:purple"}  # ekf: EKF-SLAM, no back end
 
 
 def load(path):

@@ -60,6 +60,7 @@ class EkfSlam {
   // Starts from a map known before the run (ids ascending, unique); new landmarks get ids above.
   void set_prior_map(const std::vector<Landmark>& landmarks) {
     ARBOR_CHECK(step_index_ == 0, "a prior map is set before the first step, not at step {}", step_index_);
+    state_.reserve_landmarks(static_cast<int>(landmarks.size()));
     for (const Landmark& lm : landmarks) {
       state_.add_known_landmark(lm.id, lm.mean, lm.cov);
       map_.insert(lm);
