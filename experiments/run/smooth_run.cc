@@ -196,11 +196,16 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
   r.update(accuracy_fields(scenario, evaluation_truth(scenario), trajectory, map));
   // NEES of the marginal pose covariances at the poses with ground truth (simulation, UTIAS): a consistent
   // smoother averages 3, the pose's dimension.
+  // steps.csv holds them per pose, as `arbor run` writes its per-scan NEES, so the consistency figure draws
+  // the smoother over time beside the filters.
   std::vector<double> nees;
+  std::string steps_csv = "step,time_s,nees\n";
   if (s.pose_marginals)
     for (const SmoothedPose& p : sm.poses)
-      if (p.step >= 0 && scenario.steps[p.step].truth_pose)
+      if (p.step >= 0 && scenario.steps[p.step].truth_pose) {
         nees.push_back(pose_nees(p.pose, p.covariance, *scenario.steps[p.step].truth_pose));
+        fmt::format_to(std::back_inserter(steps_csv), "{},{},{}\n", p.step, p.time_s, nees.back());
+      }
   r["nees_mean"] = mean_or_null(nees);
   r["nees_median"] = nees.empty() ? Json(nullptr) : Json(quantile(nees, 0.5));
   r["nees_in_band_fraction"] = nees.empty() ? Json(nullptr) : Json(fraction_in_band(nees, kNeesBand3Dof95));
@@ -225,6 +230,8 @@ SmoothOutput run_smoother(const SmoothConfig& config) {
     write_tum(dir + "trajectory.tum", trajectory);
     write_reference_tum(reference_trajectory(scenario), config.out_dir);
     write_map_csv(dir + "map.csv", map);
+    if (!nees.empty()) write_file_atomically(dir + "steps.csv", steps_csv);
+    else std::filesystem::remove(dir + "steps.csv");  // a reused directory keeps no other run's curve
     write_file_atomically(dir + "result.json", r.dump(2) + "\n");  // last: its presence means complete
   }
   return out;
