@@ -38,6 +38,19 @@ inline std::vector<std::string> association_names() { return filter_strategy_nam
 // The engine instantiations of one map back end with every strategy. Each back end's instantiations live
 // in their own translation unit (variants/engine/filters_<name>.cc, one ARBOR_INSTANTIATE_FILTERS line) so
 // the cross product compiles in parallel, as Ceres spreads its Schur specialisations over files.
+// make.template operator()<S>() for the strategy S usable in the filter whose name is assoc; null if none. The
+// engines' instantiation files (variants/engine/) build theirs through it.
+template <class Make, class... Strategies>
+std::unique_ptr<Filter> make_for_strategy(TypeList<Strategies...>, std::string_view assoc, const Make& make) {
+  std::unique_ptr<Filter> filter;
+  const auto visit = [&]<class S>() {
+    if constexpr (S::kTraits.in_filter)
+      if (!filter && assoc == S::kName) filter = make.template operator()<S>();
+  };
+  (visit.template operator()<Strategies>(), ...);
+  return filter;
+}
+
 // EKF-SLAM with every strategy usable in the filter (variants/engine/filters_ekf.cc).
 std::unique_ptr<Filter> make_ekf_filter(std::string_view assoc, const Scenario& scenario, const FastSlamOptions& options);
 

@@ -153,6 +153,8 @@ def label(row, columns):
     bare, named = [], []
     for c in columns:
         v = row[c]
+        if v is None or (isinstance(v, float) and v != v):  # a dimension this filter lacks (EKF: particles, map)
+            continue
         text = str(int(v)) if isinstance(v, float) and float(v).is_integer() else str(v)
         if c in METHOD:
             bare.append(text)

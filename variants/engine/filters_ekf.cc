@@ -42,22 +42,12 @@ class EkfFilter final : public Filter {
   EkfSlam<VectorMap, Assoc> engine_;
 };
 
-template <class... Strategies>
-std::unique_ptr<Filter> make_with_strategy(TypeList<Strategies...>, std::string_view assoc, const Scenario& scenario,
-                                           const FastSlamOptions& options) {
-  std::unique_ptr<Filter> filter;
-  const auto make = [&]<class S>() {
-    if constexpr (S::kTraits.in_filter)
-      if (!filter && assoc == S::kName) filter = std::make_unique<EkfFilter<S>>(scenario, options);
-  };
-  (make.template operator()<Strategies>(), ...);
-  return filter;
-}
-
 }  // namespace
 
 std::unique_ptr<Filter> make_ekf_filter(std::string_view assoc, const Scenario& scenario, const FastSlamOptions& options) {
-  return make_with_strategy(AssociationStrategies{}, assoc, scenario, options);
+  return make_for_strategy(AssociationStrategies{}, assoc, [&]<class S>() -> std::unique_ptr<Filter> {
+    return std::make_unique<EkfFilter<S>>(scenario, options);
+  });
 }
 
 }  // namespace arbor
