@@ -108,7 +108,7 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
       choice_option("filter", FIELD(options.version), filters_help(), online_filter_names()),
       value_option("map", FIELD(map), fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", "))),
       value_option("assoc", FIELD(assoc),
-                   fmt::format("Data association: {} (known = the scenario's ground-truth ids)",
+                   fmt::format("Data association: {} (known: the oracle, pairing by the scenario's true ids)",
                                fmt::join(association_names(), ", "))),
       value_option("particles", FIELD(options.particles), "Number of particles M"),
       value_option("seed", FIELD(options.seed), "Seed of every random draw of the filter", unsigned_number()),
