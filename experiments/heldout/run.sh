@@ -5,7 +5,7 @@
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
-# chosen. Evaluation: robots 3-5 and simulated seeds 10000-10011, the figures the README quotes; about
+# chosen. Evaluation: robots 3-5 and simulated seeds 10000-10011, the figures docs/results.md reports; about
 # 10 minutes on 2 cores. Re-running resumes (finished runs are skipped).
 set -euo pipefail
 set_name=${1:?usage: $0 SET OUT [ARBOR_BINARY]}
