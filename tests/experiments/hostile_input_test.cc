@@ -1,7 +1,8 @@
 // The hostile-input suite: one case per hostile input found by the review behind issue 14, grouped by its
 // class. Each runs the real `arbor` binary on a mutated copy of a valid input and asserts the contract of
-// README "Exit status": exit 0 with finite output, or exit 2 (input, options) / 1 (environment) with a
-// message naming file:line:field where the input has lines, and no result.json after a failure.
+// docs/cli.md "Exit status and budgets": exit 0 with finite output, or exit 2 (input, options) / 1
+// (environment) with a message naming file:line:field where the input has lines, and no result.json after a
+// failure.
 #include <unistd.h>
 
 #include <filesystem>
