@@ -106,7 +106,10 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
        [](const RunConfig& c) { return Json(c.scenario_path); },
        {}},
       choice_option("filter", FIELD(options.version), filters_help(), online_filter_names()),
-      value_option("map", FIELD(map), fmt::format("Map back end: {}", fmt::join(map_backend_names(), ", "))),
+      value_option("map", FIELD(map),
+                   fmt::format("Map back end: {} (naive copies a particle's whole map at each resampling; tree "
+                               "and trie share it); results do not depend on it",
+                               fmt::join(map_backend_names(), ", "))),
       value_option("assoc", FIELD(assoc),
                    fmt::format("Data association: {} (known: the oracle, pairing by the scenario's true ids)",
                                fmt::join(association_names(), ", "))),
