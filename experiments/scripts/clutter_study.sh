@@ -29,7 +29,7 @@ for w in $worlds; do
       for o in $offsets; do
         fs=$((s + o))
         run=$out/runs/$w-c$c-s$s$([ "$o" = 0 ] || echo "-f$fs")  # offset 0 keeps the names of earlier studies
-        common=(--scenario "$scn" --filter fastslam2 --particles 100 --seed "$fs" --threads 2)
+        common=(--scenario "$scn" --filter fastslam2 --map naive --particles 100 --seed "$fs" --threads 2)
         for a in known nn jcbb; do
           once "$run-$a" run "${common[@]}" --assoc "$a"
         done

@@ -21,7 +21,7 @@ for w in $worlds; do
       kidnap=()
       [ "$kind" = kidnap ] && kidnap=(--kidnap 150)
       [ -f "$scn" ] || "$arbor" simulate --world "$w" --landmarks 200 --seed "$s" "${kidnap[@]}" --out "$scn" > /dev/null
-      common=(--scenario "$scn" --filter fastslam2 --assoc jcbb --particles 100 --seed "$s" --threads 2)
+      common=(--scenario "$scn" --filter fastslam2 --map naive --assoc jcbb --particles 100 --seed "$s" --threads 2)
       once "$out/runs/$w-$kind-s$s-off" run "${common[@]}"
       once "$out/runs/$w-$kind-s$s-relocalize" run "${common[@]}" --relocalize "${relocalize_args[@]}"
     done

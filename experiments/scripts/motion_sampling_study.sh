@@ -24,8 +24,8 @@ for k in $ks; do
     [ -f "$scn" ] || "$arbor" simulate --world uniform --landmarks 200 --steps 150 --controls-per-scan "$k" --seed "$s" --out "$scn" > /dev/null
     for m in $particles; do
       for sampling in per-scan per-control; do
-        once "$out/sim/k$k-p$m-s$s-$sampling" run --scenario "$scn" --filter fastslam2 --assoc known --particles "$m" \
-          --seed "$s" --threads 2 --motion-sampling "$sampling"
+        once "$out/sim/k$k-p$m-s$s-$sampling" run --scenario "$scn" --filter fastslam2 --map naive --assoc known \
+          --particles "$m" --seed "$s" --threads 2 --motion-sampling "$sampling"
       done
     done
   done
@@ -39,8 +39,8 @@ if [ -f "$utias/Robot2_Odometry.dat" ]; then
     for s in 1 2 3; do
       for filter in fastslam2 fastslam1; do
         for sampling in per-scan per-control; do
-          once "$out/utias/r$r-$filter-s$s-$sampling" run --scenario "$scn" --filter "$filter" --assoc known --particles 100 \
-            --seed "$s" --threads 2 --motion-sampling "$sampling"
+          once "$out/utias/r$r-$filter-s$s-$sampling" run --scenario "$scn" --filter "$filter" --map naive --assoc known \
+            --particles 100 --seed "$s" --threads 2 --motion-sampling "$sampling"
         done
       done
     done
@@ -52,7 +52,7 @@ for s in 1 2 3 4 5; do
   for sampling in per-scan per-control; do
     for m in 100 1000; do
       [ "$m" = 1000 ] && [ "$s" -gt 2 ] && continue
-      once "$out/victoria_park/jcbb-p$m-s$s-$sampling" run --scenario "$vp" --filter fastslam2 --assoc jcbb \
+      once "$out/victoria_park/jcbb-p$m-s$s-$sampling" run --scenario "$vp" --filter fastslam2 --map naive --assoc jcbb \
         --particles "$m" --seed "$s" --threads 2 --motion-sampling "$sampling"
     done
   done

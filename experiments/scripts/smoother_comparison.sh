@@ -20,7 +20,7 @@ fastslam() {
   local dataset=$1 scenario=$2 filter=$3 assoc=$4 seed_list=$5
   for m in $particles; do
     for seed in $seed_list; do
-      once "$out/$dataset/${filter}_${assoc}_m${m}_s${seed}" run --scenario "$scenario" --filter "$filter" \
+      once "$out/$dataset/${filter}_${assoc}_m${m}_s${seed}" run --scenario "$scenario" --filter "$filter" --map naive \
         --assoc "$assoc" --particles "$m" --seed "$seed" --threads 2
     done
   done

@@ -21,8 +21,8 @@ for rep in $(seq 1 "$reps"); do
         if [ "$which" = old ]; then binary=$old; else binary=$new; fi
         rm -rf "$out/run"
         # 45d9865's `run` has no --quiet; its progress goes to stderr.
-        "$binary" run --scenario "$out/world_$which.scn" --filter fastslam2 --map "$map" --particles "$particles" \
-          --threads 2 --out "$out/run" > /dev/null 2>&1
+        "$binary" run --scenario "$out/world_$which.scn" --filter fastslam2 --assoc known --map "$map" \
+          --particles "$particles" --threads 2 --out "$out/run" > /dev/null 2>&1
         /usr/bin/python3 -c "import json, sys; r = json.load(open(sys.argv[1])); \
 print(f'$rep,$which,$particles,$map,2,{r[\"step_time_median_s\"] * 1e3:.4f},{r[\"wall_time_s\"]:.3f}')" \
           "$out/run/result.json" >> "$csv"

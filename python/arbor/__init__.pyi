@@ -105,8 +105,8 @@ def simulate(**options: Any) -> Scenario: ...
 
 def run(scenario: Scenario | _Path, *,
         filter: Literal["fastslam1", "fastslam2", "ekf"] = "fastslam2",
-        map: Literal["naive", "tree", "trie"] = "naive",
-        assoc: Literal["known", "nn", "nn-independent", "jcbb", "locality"] = "known",
+        map: Literal["naive", "tree", "trie"] = "trie",
+        assoc: Literal["known", "nn", "nn-independent", "jcbb", "locality"] = "jcbb",
         particles: int = 100,
         seed: int = 1,
         threads: int = 0,
@@ -149,11 +149,12 @@ def run(scenario: Scenario | _Path, *,
         (FastSLAM 2.0: particles drawn from the measurement-informed proposal); ekf (EKF-SLAM: one
         Gaussian over pose and map with the full joint covariance, O(N^2) an update; deterministic, no
         particles and no map back end). A batch filter (the smoother) runs with `arbor smooth`
-    map : {'naive', 'tree', 'trie'}, default 'naive'
-        Map back end: naive, tree, trie
-    assoc : {'known', 'nn', 'nn-independent', 'jcbb', 'locality'}, default 'known'
-        Data association: known, nn, nn-independent, jcbb, locality (known = the scenario's ground-truth
-        ids)
+    map : {'naive', 'tree', 'trie'}, default 'trie'
+        Map back end: naive, tree, trie (naive copies a particle's whole map at each resampling; tree
+        and trie share it); results do not depend on it
+    assoc : {'known', 'nn', 'nn-independent', 'jcbb', 'locality'}, default 'jcbb'
+        Data association: known, nn, nn-independent, jcbb, locality (known: the oracle, pairing by the
+        scenario's true ids)
     particles : int, default 100
         Number of particles M
     seed : int, default 1
@@ -244,8 +245,8 @@ def run(scenario: Scenario | _Path, *,
 class Filter:
     def __init__(self, scenario: Scenario, *,
             filter: Literal["fastslam1", "fastslam2", "ekf"] = "fastslam2",
-            map: Literal["naive", "tree", "trie"] = "naive",
-            assoc: Literal["known", "nn", "nn-independent", "jcbb", "locality"] = "known",
+            map: Literal["naive", "tree", "trie"] = "trie",
+            assoc: Literal["known", "nn", "nn-independent", "jcbb", "locality"] = "jcbb",
             particles: int = 100,
             seed: int = 1,
             threads: int = 0,
@@ -285,11 +286,12 @@ class Filter:
             (FastSLAM 2.0: particles drawn from the measurement-informed proposal); ekf (EKF-SLAM: one
             Gaussian over pose and map with the full joint covariance, O(N^2) an update; deterministic, no
             particles and no map back end). A batch filter (the smoother) runs with `arbor smooth`
-        map : {'naive', 'tree', 'trie'}, default 'naive'
-            Map back end: naive, tree, trie
-        assoc : {'known', 'nn', 'nn-independent', 'jcbb', 'locality'}, default 'known'
-            Data association: known, nn, nn-independent, jcbb, locality (known = the scenario's ground-truth
-            ids)
+        map : {'naive', 'tree', 'trie'}, default 'trie'
+            Map back end: naive, tree, trie (naive copies a particle's whole map at each resampling; tree
+            and trie share it); results do not depend on it
+        assoc : {'known', 'nn', 'nn-independent', 'jcbb', 'locality'}, default 'jcbb'
+            Data association: known, nn, nn-independent, jcbb, locality (known: the oracle, pairing by the
+            scenario's true ids)
         particles : int, default 100
             Number of particles M
         seed : int, default 1

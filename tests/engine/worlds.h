@@ -62,9 +62,11 @@ inline Scenario standing_robot(const std::vector<std::vector<Vec2>>& scans) {
   return s;
 }
 
-// A FastSLAM run with the default map and association (naive, known) and these settings.
+// A FastSLAM run with the default map, known association (the oracle, named: the default is a real strategy)
+// and these settings.
 inline RunConfig fastslam_config(FilterVersion version, int particles, std::uint64_t seed, int threads) {
   RunConfig c;
+  c.assoc = "known";
   c.options.version = version;
   c.options.particles = particles;
   c.options.seed = seed;

@@ -31,15 +31,15 @@ TEST(RunOptions, ResultConfigHoldsEveryOptionButOutUnderItsOwnName) {
 }
 
 // For every option, some value `arbor run` accepts changes exactly that option's key in the config: a
-// descriptor that records another field, or none, fails here. Options that known association (the default)
-// refuses are tried beside --assoc=jcbb.
+// descriptor that records another field, or none, fails here. Options that one strategy refuses are tried
+// beside the other: the default (jcbb) and --assoc=known.
 TEST(RunOptions, EachOptionsValueReachesItsOwnKeyAndNoOther) {
   const std::vector<std::string> candidates{"0.25", "0.5", "3", "7", "-3", "true",     "x.scn",     "fastslam1",
-                                            "tree", "jcbb", "per-control", "student-t", "set"};
+                                            "tree", "known", "per-control", "student-t", "set"};
   for (const std::string& name : run_option_names()) {
     if (name == "out" || name == "prior-map") continue;  // --out is not recorded; --prior-map needs a file
     bool changed_alone = false;
-    for (const std::vector<std::string>& base : {std::vector<std::string>{}, std::vector<std::string>{"--assoc=jcbb"}}) {
+    for (const std::vector<std::string>& base : {std::vector<std::string>{}, std::vector<std::string>{"--assoc=known"}}) {
       if (changed_alone || (name == "assoc" && !base.empty())) break;
       const nlohmann::json defaults = run_config_json(run_config_from_arguments(base));
       for (const std::string& value : candidates) {
@@ -67,7 +67,7 @@ TEST(RunOptions, EachOptionsValueReachesItsOwnKeyAndNoOther) {
 
 TEST(RunOptions, ThePrecisionGatesKeepTheirCommandLineNames) {
   const nlohmann::json config = run_config_json(run_config_from_arguments(
-      {"--chi2=0.9", "--known-gate=0.5", "--new-landmark-gate=0.95", "--prune=-4", "--confirm=2.5"}));
+      {"--assoc=known", "--chi2=0.9", "--known-gate=0.5", "--new-landmark-gate=0.95", "--prune=-4", "--confirm=2.5"}));
   EXPECT_EQ(config["chi2"], 0.9);
   EXPECT_EQ(config["known_gate"], 0.5);
   EXPECT_EQ(config["new_landmark_gate"], 0.95);

@@ -86,6 +86,7 @@ TEST(SmoothRun, AKnownAssociationRunsDecisionsAreTheTruthRenamed) {
   write_scenario(small_world(), dir + "/scenario.txt");
   const Scenario s = read_scenario(dir + "/scenario.txt");
   RunConfig run;
+  run.assoc = "known";
   run.options.particles = 20;
   run.options.threads = 1;
   run.options.association.known_gate_probability = 1.0;  // no gate: every measurement with an id is paired, as the truth's
