@@ -99,14 +99,14 @@ struct FastSlamOptions {
   // makes the two coincide, most where the scan holds little else (results/association/5c07acf_vm_gcc-12.2.0
   // traces one such corner). Ignored with known association, whose pairings are right. Off by default: at
   // low clutter the second sighting of a new landmark is information the filter then forgoes (rooms with
-  // clutter 2 lose by it; the README's `--pose-from-confirmed` paragraph gives the figures).
+  // clutter 2 lose by it; docs/results.md, "What helps with a cluttered sensor?", gives the figures).
   bool pose_from_confirmed = false;
   // ... except in a scan that pairs no confirmed landmark but at least this many provisional ones (0: never):
   // the second sighting of an unmapped area, above all the start, where every landmark is provisional.
   // Held there, the pose keeps the first interval's odometry error, the first landmarks are updated in the
   // turned frame, and the whole run keeps the turn (uniform worlds, clutter 5, with close_loops and a 0.999
-  // gate: ATE before alignment 2.10 times known association's, 1.18 with this rule; the README's "For a
-  // cluttered sensor" gives the figures). Clutter seldom lines up with clutter three times in one jointly
+  // gate: ATE before alignment 2.10 times known association's, 1.18 with this rule; docs/results.md, "What
+  // helps with a cluttered sensor?", gives the figures). Clutter seldom lines up with clutter three times in one jointly
   // compatible answer.
   int provisional_steer_min = 3;
   // Pruning is off with known association: the ids are right by construction, so evidence only matters
