@@ -37,16 +37,21 @@ double process_cpu_s() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+// A drive of `steps` scans on a circle through the field of n landmarks, as far from its edge at every N.
+Scenario circle_through(const std::vector<Landmark>& field, std::int64_t n, int steps) {
+  FieldDrive drive;
+  drive.radius_m = std::min(0.3 * field_side_m(n), 100.0);
+  drive.steps = steps;
+  return make_field_scenario(field, drive);
+}
+
 template <class Map>
 void BM_FastSlam_Step(benchmark::State& state) {
   const std::int64_t n = state.range(0);
   const int threads = static_cast<int>(state.range(1));
   const int particles = static_cast<int>(state.range(2));
   const auto field = make_landmark_field(n);
-  FieldDrive drive;
-  drive.radius_m = std::min(0.3 * field_side_m(n), 100.0);
-  drive.steps = kWarmupSteps + kTimedSteps;
-  const Scenario scenario = make_field_scenario(field, drive);
+  const Scenario scenario = circle_through(field, n, kWarmupSteps + kTimedSteps);
 
   FastSlamOptions options;
   options.particles = particles;
@@ -100,10 +105,7 @@ constexpr int kEkfTimedSteps = 12;
 void BM_Ekf_Step(benchmark::State& state) {
   const std::int64_t n = state.range(0);
   const auto field = make_landmark_field(n);
-  FieldDrive drive;
-  drive.radius_m = std::min(0.3 * field_side_m(n), 100.0);
-  drive.steps = kEkfWarmupSteps + kEkfTimedSteps;
-  const Scenario scenario = make_field_scenario(field, drive);
+  const Scenario scenario = circle_through(field, n, kEkfWarmupSteps + kEkfTimedSteps);
   FastSlamOptions options;
   options.version = FilterVersion::kEkf;
   EkfSlam<VectorMap, KnownAssociation> engine(scenario, options);
