@@ -129,7 +129,8 @@ def make(df, out_dir, results_path=None):
     notes.append("Time per scan: the median filter step time, one step per scan in these worlds." if per_scan else
                  "Time per step: the median filter step time; a real log has several odometry steps per scan, "
                  "so this is not the time per scan.")
-    return [ar.Section(TITLE, " ".join(notes) + "\n\n" + ar.markdown_table(frame) + "\n")]
+    # The table before its notes: the first screen is for the comparison.
+    return [ar.Section(TITLE, ar.markdown_table(frame) + "\n\n" + " ".join(notes) + "\n")]
 
 
 if __name__ == "__main__":
