@@ -4,7 +4,7 @@ results.py       the sweep's rows as a DataFrame, the statistics (mean with t-ba
                  and figures; the files themselves are read by arbor_files (python/arbor_files.py)
 html_report.py   report.md as one self-contained report.html
 the sections     one module per report section, each with make(df, out_dir, results_dir) -> [Section]:
-                 dataset_accuracy, failures, complexity, accuracy, paired, consistency, association, hypotheses,
+                 configurations, dataset_accuracy, failures, complexity, accuracy, paired, consistency, association, hypotheses,
                  smoother_table, step_series, threads, trajectory. Each also runs on its own:
                  PYTHONPATH=analysis /usr/bin/python3 -m arbor_analysis.accuracy RESULTS_DIR [--out DIR]
 """

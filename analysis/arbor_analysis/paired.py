@@ -69,7 +69,9 @@ def compare(df, dimension, metric):
 
 
 def value_text(dimension, value):
-    return ar.label({dimension: value}, [dimension])
+    """The value as a label, marked where it is an oracle or the reference (never to be read as a strategy)."""
+    role = ar.role({dimension: value})
+    return ar.label({dimension: value}, [dimension]) + (f" ({role})" if role else "")
 
 
 def sentence(r):
@@ -98,8 +100,13 @@ def comparisons(df):
     return rows
 
 
-def significant_sentences(df):
-    return [sentence(r) for r in comparisons(df) if r["significant"]]
+def involves_reference(r):
+    return bool(ar.role({r["dimension"]: r["a"]}) or ar.role({r["dimension"]: r["b"]}))
+
+
+def significant_sentences(df, with_references=True):
+    """The significant comparisons in words; without those against an oracle or the smoother if asked."""
+    return [sentence(r) for r in comparisons(df) if r["significant"] and (with_references or not involves_reference(r))]
 
 
 def make(df, out_dir, results_path=None):

@@ -142,6 +142,32 @@ def drop_identical_map_backends(df, by, keys):
     return [c for c in by if c != "map"], df.drop_duplicates(subset=rest)
 
 
+# Configurations that bound what a strategy can reach rather than being one: known association reads the
+# simulator's landmark ids (a real dataset has none), and the smoother solves the whole log at once. A report
+# shows them as references and never names one of them best.
+ORACLE_ASSOC = "known"
+REFERENCE_FILTER = "smoother"
+
+
+def role(row):
+    """"reference" for the smoother, "oracle" for known association, "" for a real strategy."""
+    if row.get("filter") == REFERENCE_FILTER:
+        return "reference"
+    if row.get("assoc") == ORACLE_ASSOC:
+        return "oracle"
+    return ""
+
+
+def is_reference(df):
+    """Per row of df: whether it is an oracle or the smoother (role() is not empty)."""
+    mask = pd.Series(False, index=df.index)
+    if "filter" in df:
+        mask |= df["filter"] == REFERENCE_FILTER
+    if "assoc" in df:
+        mask |= df["assoc"] == ORACLE_ASSOC
+    return mask
+
+
 # How a label names each dimension that is not a method: "name = value unit", so that a label part can never
 # be clutter in one table and particles in another. Method columns (filter, map, assoc, run options' values
 # aside) are names already and stay bare: "fastslam2/jcbb, particles = 100, clutter = 2 /scan".

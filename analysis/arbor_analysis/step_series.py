@@ -1,5 +1,5 @@
 """The filter over time: the step time per map back end (rolling median over 25 steps) and the effective
-sample size N_eff / particles per filter and association strategy, on one representative run of each
+sample size N_eff / particles (rolling median with its 10-90 % band) per filter and association strategy, on one representative run of each
 configuration (the largest particle count and world, the least clutter, the first seed), with a table of
 step-time quantiles, mean N_eff and how often the filter resampled.
 Reads: results.jsonl (filter, map, assoc, particles, seed, run_dir) and each run's steps.csv."""
@@ -32,6 +32,14 @@ def representative_runs(df):
 def preferred(values, order):
     """The first of `order` among values, else the first value."""
     return next((v for v in order if v in set(values)), sorted(values, key=str)[0])
+
+
+def neff_band(ax, time_s, share, label):
+    """N_eff / particles as its rolling median over WINDOW steps with the 10-90 % band around it. Drawn step by
+    step it swings between resamplings every few steps, and several runs' lines fill the axes as a solid block."""
+    rolling = share.rolling(WINDOW, min_periods=1, center=True)
+    line, = ax.plot(time_s, rolling.median(), lw=1.2, label=label)
+    ax.fill_between(time_s, rolling.quantile(0.1), rolling.quantile(0.9), color=line.get_color(), alpha=0.2, lw=0)
 
 
 def make(df, out_dir, results_path=None):
@@ -68,15 +76,15 @@ def make(df, out_dir, results_path=None):
             rolling = steps["step_time_s"].rolling(WINDOW, min_periods=1).median()
             time_ax.plot(steps["time_s"], 1e3 * rolling, label=f"map = {run.get('map')}")
         if run.get("map") == map_shown:
-            neff_ax.plot(steps["time_s"], steps["n_eff"] / run["particles"], lw=0.8,
-                         label=ar.label(run, [c for c in shown if c != "map"] or ["filter"]))
+            neff_band(neff_ax, steps["time_s"], steps["n_eff"] / run["particles"],
+                      ar.label(run, [c for c in shown if c != "map"] or ["filter"]))
     time_ax.set_yscale("log")
     time_ax.set_xlabel("time (s)")
     time_ax.set_ylabel(f"step time (ms), rolling median of {WINDOW}")
     time_ax.set_title(f"{filter_shown}/{assoc_shown}: step time per map back end")
     neff_ax.set_ylim(0, 1.05)
     neff_ax.set_xlabel("time (s)")
-    neff_ax.set_ylabel("N_eff / particles")
+    neff_ax.set_ylabel(f"N_eff / particles: rolling median, 10–90 % of {WINDOW} steps")
     neff_ax.set_title(f"effective sample size (map = {map_shown})")
     for ax in (time_ax, neff_ax):
         ax.grid(True, alpha=0.3)
