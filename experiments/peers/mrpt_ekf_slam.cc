@@ -22,12 +22,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <numeric>
+#include <optional>
+#include <Eigen/Cholesky>  // LDLT
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -47,6 +50,13 @@ using arbor::Pose2;
 // before the first landmark. Stock MRPT skips the prediction, mean included, while the map is empty, which
 // drops the motion up to the first scan; unless asked for the stock behaviour the pose is predicted then too,
 // as Arbor does.
+// A covariance with a negative LDL^T pivot beyond rounding; zero pivots pass.
+template <typename M>
+bool indefinite(const M& P) {
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(P);
+  return ldlt.vectorD().minCoeff() < -1e-12 * std::max(1.0, ldlt.vectorD().cwiseAbs().maxCoeff());
+}
+
 class PeerFilter : public mrpt::slam::CRangeBearingKFSLAM2D {
  public:
   PeerFilter(const Pose2& start, const arbor::Vec3& sigma, bool stock_start) : stock_start_(stock_start) {
@@ -59,6 +69,8 @@ class PeerFilter : public mrpt::slam::CRangeBearingKFSLAM2D {
   Pose2 pose() const { return {m_xkk[0], m_xkk[1], m_xkk[2]}; }
   Mat3 pose_covariance() const { return m_pkk.asEigen().block<3, 3>(0, 0); }
   std::size_t landmarks() const { return getNumberOfLandmarksInTheMap(); }
+  // Whether the joint covariance has a negative pivot: semidefinite is fine (an exactly known start pose).
+  bool joint_covariance_indefinite() const { return indefinite(m_pkk.asEigen()); }
   // The map as Arbor's metric code reads it: each landmark labelled with the true id it was started from.
   std::vector<arbor::Landmark> map() const {
     std::vector<arbor::Landmark> out;
@@ -156,6 +168,15 @@ int run(const std::string& scenario_path, const std::string& out_dir, bool stock
   Mat3 delta_cov = Mat3::Zero();
   double last_time = scenario.start_time_s;
   int clutter_dropped = 0;
+  // The first scan after which MRPT's pose is not finite or its pose covariance is indefinite. Its
+  // update, P - K S K^T without symmetrising, lets the joint covariance drift indefinite on long runs with
+  // hundreds of landmarks, and then the filter blows up; the figures after that point are not the filter's.
+  std::optional<double> diverged_at_s;
+  // The first checked scan at which the whole joint covariance is indefinite: checked every
+  // kDefiniteCheckScans scans (a Cholesky of the full matrix, untimed), since its first loss comes long before
+  // the pose block shows it.
+  constexpr int kDefiniteCheckScans = 20;
+  std::optional<double> indefinite_at_s;
   for (const arbor::ScenarioStep& step : scenario.steps) {
     scenario.motion.predict(&delta, &delta_cov, step.control, step.time_s - last_time);
     last_time = step.time_s;
@@ -171,8 +192,14 @@ int run(const std::string& scenario_path, const std::string& out_dir, bool stock
       delta = Pose2{};
       delta_cov.setZero();
       const Mat3 P = filter.pose_covariance();
-      // As `arbor run` counts it: scans with a truth pose, and not at an exactly known pose (0/0).
-      if (step.truth_pose && P.trace() > 1e-9) nees.push_back(arbor::pose_nees(filter.pose(), P, *step.truth_pose));
+      if (!diverged_at_s && (!filter.pose().vector().allFinite() || !P.allFinite() || indefinite(P)))
+        diverged_at_s = step.time_s;
+      if (!indefinite_at_s && scan_times.size() % kDefiniteCheckScans == 0 && filter.joint_covariance_indefinite())
+        indefinite_at_s = step.time_s;
+      // As `arbor run` counts it: scans with a truth pose, and not at an exactly known pose (0/0); and only
+      // until MRPT blows up.
+      if (step.truth_pose && P.trace() > 1e-9 && !diverged_at_s)
+        nees.push_back(arbor::pose_nees(filter.pose(), P, *step.truth_pose));
     }
     if (step.has_scan || step.truth_pose) trajectory.push_back({step.time_s, filter.pose().compose(delta)});
   }
@@ -184,7 +211,8 @@ int run(const std::string& scenario_path, const std::string& out_dir, bool stock
              {{"scans", scan_times.size()},
               {"step_time_median_s", statistic(scan_times, [](auto& v) { return arbor::quantile(v, 0.5); })},
               {"step_time_p95_s", statistic(scan_times, [](auto& v) { return arbor::quantile(v, 0.95); })},
-              {"landmarks", filter.landmarks()}});
+              {"landmarks", filter.landmarks()},
+              {"diverged_at_s", number_or_null(diverged_at_s)}});
 
   const auto truth = arbor::truth_positions(scenario);
   const auto ate = arbor::absolute_trajectory_error(trajectory, truth, false);
@@ -199,6 +227,8 @@ int run(const std::string& scenario_path, const std::string& out_dir, bool stock
               {"nees_median", statistic(nees, [](auto& v) { return arbor::quantile(v, 0.5); })},
               {"nees_in_band_fraction",
                statistic(nees, [](auto& v) { return arbor::fraction_in_band(v, arbor::kNeesBand3Dof95); })},
+              {"diverged_at_s", number_or_null(diverged_at_s)},
+              {"joint_covariance_indefinite_at_s", number_or_null(indefinite_at_s)},
               {"clutter_dropped", clutter_dropped},
               {"stock_start", stock_start},
               {"scenario", scenario_path}});
