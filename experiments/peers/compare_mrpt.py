@@ -17,21 +17,28 @@ pose NEES at scans), so the figures differ only where the filters do.
 import argparse
 import csv
 import json
+import math
 import os
 import statistics
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+import arbor_files  # noqa: E402  (the project's one reader of trajectory.tum)
+
 NEES_BAND = (0.2158, 9.3484)  # two-sided 95 % of chi-square(3), as core/metrics/trajectory_metrics.h
 
 
 def run_once(out_dir, done_file, command):
-    """Runs command (which writes out_dir) unless out_dir/done_file exists."""
+    """Runs command (which writes out_dir) unless out_dir/done_file exists; its stderr (MRPT logs a warning
+    per scan once it has blown up) goes to out_dir/stderr.log."""
     if os.path.exists(os.path.join(out_dir, done_file)):
         return
+    os.makedirs(out_dir, exist_ok=True)
     # One thread for both: the comparison is of the filters, not of how MRPT's Eigen or Arbor spread work.
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, env=env)
+    with open(os.path.join(out_dir, "stderr.log"), "w", encoding="utf-8") as log:
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=log, env=env)
 
 
 def read_json(path):
@@ -39,15 +46,25 @@ def read_json(path):
         return json.load(f)
 
 
-def full_map_step_time(steps_csv, share=0.9):
-    """Median time of the scans taken with at least `share` of the final map: the cost at N (the map's size
-    at the end), which the whole run's median understates while the map grows. Also returns that N."""
-    with open(steps_csv, newline="", encoding="utf-8") as f:
-        rows = [(float(r["step_time_s"]), int(r["landmarks"])) for r in csv.DictReader(f)]
-    if not rows:
-        return float("nan"), 0
-    n = rows[-1][1]
-    return statistics.median(t for t, lm in rows if lm >= share * n), n
+def read_steps(run_dir):
+    """(time_s, step_time_s, landmarks) per row of RUN_DIR/steps.csv."""
+    with open(os.path.join(run_dir, "steps.csv"), newline="", encoding="utf-8") as f:
+        return [(float(r["time_s"]), float(r["step_time_s"]), int(r["landmarks"])) for r in csv.DictReader(f)]
+
+
+def band_step_time(rows, n_ref, until_s, share=0.9):
+    """Median time of the scans taken with between share * n_ref and n_ref landmarks in the map, before
+    until_s: the cost at N = n_ref, which a whole run's median understates while the map grows."""
+    times = [t for time_s, t, lm in rows if share * n_ref <= lm <= n_ref and time_s < until_s]
+    return statistics.median(times) if times else float("nan")
+
+
+def pose_gap(run_a, run_b, until_s):
+    """Largest distance between two runs' trajectory.tum positions at their common times before until_s."""
+    a = {round(t, 6): (x, y) for t, x, y, _ in arbor_files.read_tum(os.path.join(run_a, "trajectory.tum"))}
+    gaps = [math.dist(a[round(t, 6)], (x, y)) for t, x, y, _ in
+            arbor_files.read_tum(os.path.join(run_b, "trajectory.tum")) if round(t, 6) in a and t < until_s]
+    return max(gaps) if gaps else float("nan")
 
 
 def simulate(arbor, path, landmarks, steps, seed):
@@ -77,14 +94,26 @@ def row_of(program, name, run_dir):
     else:
         acc = read_json(os.path.join(run_dir, "accuracy.json"))
         timing = read_json(os.path.join(run_dir, "timing.json"))
-    row = {"scenario": name, "program": program, "ate_rmse_m": acc["ate_rmse_m"],
+    return {"scenario": name, "program": program, "ate_rmse_m": acc["ate_rmse_m"],
             "ate_aligned_rmse_m": acc["ate_aligned_rmse_m"], "landmark_rmse_m": acc["landmark_rmse_m"],
             "nees_median": acc["nees_median"], "nees_in_band_fraction": acc["nees_in_band_fraction"],
             "landmarks": timing["landmarks"], "step_time_median_s": timing["step_time_median_s"],
-            "step_time_p95_s": timing["step_time_p95_s"]}
-    row["step_time_full_map_s"], row["steps_csv_final_landmarks"] = full_map_step_time(
-        os.path.join(run_dir, "steps.csv"))
-    return row
+            "step_time_p95_s": timing["step_time_p95_s"], "diverged_at_s": acc.get("diverged_at_s"),
+            "joint_covariance_indefinite_at_s": acc.get("joint_covariance_indefinite_at_s")}
+
+
+def compare(rows, dirs):
+    """Adds to the rows of one scenario the largest Arbor-MRPT position gap before MRPT blew up (if it did),
+    and each program's time per scan over the same band of map sizes: the 10 % below N, the smaller of
+    Arbor's final map and MRPT's map when it blew up (its later scans are not the filter's work)."""
+    until = next((r["diverged_at_s"] for r in rows if r["diverged_at_s"] is not None), math.inf)
+    steps = {r["program"]: read_steps(dirs[r["program"]]) for r in rows}
+    n_ref = min(max((lm for t, _, lm in s if t < until), default=0) for s in steps.values())
+    for r in rows:
+        r["pose_gap_to_arbor_m"] = pose_gap(dirs["arbor"], dirs[r["program"]], until)
+        r["band_landmarks"] = n_ref
+        r["step_time_band_s"] = band_step_time(steps[r["program"]], n_ref, until)
+    return rows
 
 
 def write_csv(path, rows):
@@ -134,7 +163,7 @@ def main():
         scenario = os.path.join(a.out, "scenarios", name + ".scn")
         simulate(arbor, scenario, a.landmarks, a.steps, seed)
         dirs = run_pair(arbor, mrpt, scenario, a.out, name)
-        accuracy += [row_of(k, name, d) for k, d in dirs.items()]
+        accuracy += compare([row_of(k, name, d) for k, d in dirs.items()], dirs)
         print(f"done {name}", flush=True)
     write_csv(os.path.join(results, "accuracy.csv"), accuracy)
 
@@ -144,42 +173,58 @@ def main():
     simulate(arbor, scenario, a.timing_landmarks, a.timing_steps, 1)
     for r in range(a.timing_repeats):
         dirs = run_pair(arbor, mrpt, scenario, a.out, name, repeat=f"_timing{r}")
-        timing += [dict(row_of(k, name, dirs[k]), repeat=r) for k in ("arbor", "mrpt")]
+        rows = [row_of(k, name, dirs[k]) for k in ("arbor", "mrpt")]
+        timing += [dict(row, repeat=r) for row in compare(rows, dirs)]
     write_csv(os.path.join(results, "timing.csv"), timing)
 
     lines = ["## Accuracy: uniform worlds, known association", "",
-             f"{a.landmarks} landmarks, {a.steps} steps; SE(2)-aligned ATE [m] (unaligned in brackets), pose NEES "
-             f"median and share of scans inside the 95 % band [{NEES_BAND[0]}, {NEES_BAND[1]}].", "",
-             "| seed | Arbor EKF ATE | MRPT ATE | Arbor − MRPT aligned ATE | MRPT stock start ATE | "
-             "Arbor NEES med / in band | MRPT NEES med / in band | landmarks Arbor / MRPT |",
-             "|---|---|---|---|---|---|---|---|"]
+             f"{a.landmarks} landmarks, {a.steps} steps; SE(2)-aligned ATE [m] (unaligned in brackets), the largest "
+             "distance between the two filters' positions at any scan, pose NEES median and share of scans inside "
+             f"the 95 % band [{NEES_BAND[0]}, {NEES_BAND[1]}].", "",
+             "| seed | Arbor EKF ATE | MRPT ATE | Arbor − MRPT aligned ATE | largest position gap [m] | "
+             "MRPT stock start ATE | Arbor NEES med / in band | MRPT NEES med / in band | landmarks Arbor / MRPT |",
+             "|---|---|---|---|---|---|---|---|---|"]
     by = {(r["scenario"], r["program"]): r for r in accuracy}
     for seed in a.seeds:
         name = f"uniform_L{a.landmarks}_S{a.steps}_s{seed}"
         ar, mr, ms = by[(name, "arbor")], by[(name, "mrpt")], by[(name, "mrpt_stock")]
+        gap = ar["ate_aligned_rmse_m"] - mr["ate_aligned_rmse_m"] if mr["ate_aligned_rmse_m"] is not None else None
         lines.append(f"| {seed} | {fmt(ar['ate_aligned_rmse_m'])} ({fmt(ar['ate_rmse_m'])}) | "
                      f"{fmt(mr['ate_aligned_rmse_m'])} ({fmt(mr['ate_rmse_m'])}) | "
-                     f"{ar['ate_aligned_rmse_m'] - mr['ate_aligned_rmse_m']:+.1e} | "
+                     f"{'–' if gap is None else f'{gap:+.1e}'} | {mr['pose_gap_to_arbor_m']:.1e} | "
                      f"{fmt(ms['ate_aligned_rmse_m'])} ({fmt(ms['ate_rmse_m'])}) | "
                      f"{fmt(ar['nees_median'], 3)} / {fmt(ar['nees_in_band_fraction'], 2)} | "
                      f"{fmt(mr['nees_median'], 3)} / {fmt(mr['nees_in_band_fraction'], 2)} | "
                      f"{ar['landmarks']} / {mr['landmarks']} |")
+    diverged = [r for r in accuracy if r["diverged_at_s"] is not None]
+    lines += ["", f"MRPT blew up (pose not finite or pose covariance indefinite) in {len(diverged)} of "
+              f"these runs."]
+
+    t0 = timing[0]
+    mrpt0 = next(r for r in timing if r["program"] == "mrpt")
     lines += ["", f"## Time per scan: {a.timing_landmarks}-landmark world, {a.timing_steps} scans, seed 1, "
               f"{a.timing_repeats} alternating repeats (median of the repeats)", "",
-              "| program | landmarks at the end (N) | median over the run [ms] | p95 [ms] | "
-              "median at >= 0.9 N [ms] | aligned ATE [m] |", "|---|---|---|---|---|---|"]
+              f"Band: the scans with {math.ceil(0.9 * t0['band_landmarks'])}–{t0['band_landmarks']} landmarks in the "
+              "map (N = the smaller of Arbor's final map and MRPT's map before it blew up).", "",
+              "| program | landmarks at the end | median in the band [ms] | median over the run [ms] | p95 [ms] | "
+              "aligned ATE [m] | largest position gap [m] |", "|---|---|---|---|---|---|---|"]
     med = {}
     for program in ("arbor", "mrpt"):
         rows = [r for r in timing if r["program"] == program]
         m = {k: statistics.median(r[k] for r in rows) for k in
-             ("step_time_median_s", "step_time_p95_s", "step_time_full_map_s")}
+             ("step_time_band_s", "step_time_median_s", "step_time_p95_s")}
         med[program] = m
-        lines.append(f"| {program} | {rows[0]['landmarks']} | {1e3 * m['step_time_median_s']:.3g} | "
-                     f"{1e3 * m['step_time_p95_s']:.3g} | {1e3 * m['step_time_full_map_s']:.3g} | "
-                     f"{fmt(rows[0]['ate_aligned_rmse_m'])} |")
-    ratio = med["mrpt"]["step_time_full_map_s"] / med["arbor"]["step_time_full_map_s"]
-    whole_run = med["mrpt"]["step_time_median_s"] / med["arbor"]["step_time_median_s"]
-    lines += ["", f"MRPT / Arbor time per scan at >= 0.9 N: {ratio:.2f}x (over the whole run: {whole_run:.2f}x).", ""]
+        lines.append(f"| {program} | {rows[0]['landmarks']} | {1e3 * m['step_time_band_s']:.3g} | "
+                     f"{1e3 * m['step_time_median_s']:.3g} | {1e3 * m['step_time_p95_s']:.3g} | "
+                     f"{fmt(rows[0]['ate_aligned_rmse_m'])} | {rows[0]['pose_gap_to_arbor_m']:.1e} |")
+    ratio = med["mrpt"]["step_time_band_s"] / med["arbor"]["step_time_band_s"]
+    lines += ["", f"MRPT / Arbor time per scan in the band: {ratio:.1f}x."]
+    if mrpt0["diverged_at_s"] is not None:
+        lines += ["", f"MRPT's joint covariance was first found indefinite at t = "
+                  f"{fmt(mrpt0['joint_covariance_indefinite_at_s'])} s (checked every 20 scans) and MRPT blew up at "
+                  f"t = {fmt(mrpt0['diverged_at_s'])} s; its ATE is then not finite (–), and the position gap and "
+                  "band are taken before that time."]
+    lines.append("")
     with open(os.path.join(results, "comparison.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(lines))
     print("\n".join(lines))
