@@ -74,13 +74,18 @@ def simulate(arbor, path, landmarks, steps, seed):
 
 
 def run_pair(arbor, mrpt, scenario, out, name, repeat=""):
-    """Arbor's EKF, MRPT, and MRPT with its stock start, on one scenario; returns their run folders."""
-    dirs = {k: os.path.join(out, f"{k}{repeat}", name) for k in ("arbor", "mrpt", "mrpt_stock")}
+    """Arbor's EKF, MRPT with each of its two EKF updates and (unless timing) with its stock start, on one
+    scenario; returns their run folders."""
+    dirs = {k: os.path.join(out, f"{k}{repeat}", name) for k in ("arbor", "mrpt", "mrpt_davison", "mrpt_stock")}
     run_once(dirs["arbor"], "result.json",
              [arbor, "run", "--scenario", scenario, "--filter", "ekf", "--assoc", "known", "--quiet", "--out",
               dirs["arbor"]])
     run_once(dirs["mrpt"], "accuracy.json", [mrpt, "--scenario", scenario, "--out", dirs["mrpt"]])
-    if not repeat:
+    run_once(dirs["mrpt_davison"], "accuracy.json",
+             [mrpt, "--scenario", scenario, "--out", dirs["mrpt_davison"], "--davison"])
+    if repeat:
+        del dirs["mrpt_stock"]
+    else:
         run_once(dirs["mrpt_stock"], "accuracy.json",
                  [mrpt, "--scenario", scenario, "--out", dirs["mrpt_stock"], "--stock-start"])
     return dirs
@@ -103,14 +108,15 @@ def row_of(program, name, run_dir):
 
 
 def compare(rows, dirs):
-    """Adds to the rows of one scenario the largest Arbor-MRPT position gap before MRPT blew up (if it did),
-    and each program's time per scan over the same band of map sizes: the 10 % below N, the smaller of
-    Arbor's final map and MRPT's map when it blew up (its later scans are not the filter's work)."""
-    until = next((r["diverged_at_s"] for r in rows if r["diverged_at_s"] is not None), math.inf)
+    """Adds to the rows of one scenario the largest Arbor-MRPT position gap before that MRPT run blew up (if it
+    did), and each program's time per scan over the same band of map sizes: the 10 % below N, the smallest of
+    the final maps and of the maps at a blow-up (the later scans are not the filter's work)."""
+    own = {r["program"]: math.inf if r["diverged_at_s"] is None else r["diverged_at_s"] for r in rows}
+    until = min(own.values())
     steps = {r["program"]: read_steps(dirs[r["program"]]) for r in rows}
     n_ref = min(max((lm for t, _, lm in s if t < until), default=0) for s in steps.values())
     for r in rows:
-        r["pose_gap_to_arbor_m"] = pose_gap(dirs["arbor"], dirs[r["program"]], until)
+        r["pose_gap_to_arbor_m"] = pose_gap(dirs["arbor"], dirs[r["program"]], own[r["program"]])
         r["band_landmarks"] = n_ref
         r["step_time_band_s"] = band_step_time(steps[r["program"]], n_ref, until)
     return rows
@@ -173,7 +179,7 @@ def main():
     simulate(arbor, scenario, a.timing_landmarks, a.timing_steps, 1)
     for r in range(a.timing_repeats):
         dirs = run_pair(arbor, mrpt, scenario, a.out, name, repeat=f"_timing{r}")
-        rows = [row_of(k, name, dirs[k]) for k in ("arbor", "mrpt")]
+        rows = [row_of(k, name, d) for k, d in dirs.items()]
         timing += [dict(row, repeat=r) for row in compare(rows, dirs)]
     write_csv(os.path.join(results, "timing.csv"), timing)
 
@@ -182,48 +188,51 @@ def main():
              "distance between the two filters' positions at any scan, pose NEES median and share of scans inside "
              f"the 95 % band [{NEES_BAND[0]}, {NEES_BAND[1]}].", "",
              "| seed | Arbor EKF ATE | MRPT ATE | Arbor − MRPT aligned ATE | largest position gap [m] | "
-             "MRPT stock start ATE | Arbor NEES med / in band | MRPT NEES med / in band | landmarks Arbor / MRPT |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "MRPT Davison ATE (gap) | MRPT stock start ATE | Arbor NEES med / in band | MRPT NEES med / in band | "
+             "landmarks Arbor / MRPT |", "|---|---|---|---|---|---|---|---|---|---|"]
     by = {(r["scenario"], r["program"]): r for r in accuracy}
     for seed in a.seeds:
         name = f"uniform_L{a.landmarks}_S{a.steps}_s{seed}"
-        ar, mr, ms = by[(name, "arbor")], by[(name, "mrpt")], by[(name, "mrpt_stock")]
+        ar, mr, ms, md = (by[(name, k)] for k in ("arbor", "mrpt", "mrpt_stock", "mrpt_davison"))
         gap = ar["ate_aligned_rmse_m"] - mr["ate_aligned_rmse_m"] if mr["ate_aligned_rmse_m"] is not None else None
         lines.append(f"| {seed} | {fmt(ar['ate_aligned_rmse_m'])} ({fmt(ar['ate_rmse_m'])}) | "
                      f"{fmt(mr['ate_aligned_rmse_m'])} ({fmt(mr['ate_rmse_m'])}) | "
                      f"{'–' if gap is None else f'{gap:+.1e}'} | {mr['pose_gap_to_arbor_m']:.1e} | "
+                     f"{fmt(md['ate_aligned_rmse_m'])} ({md['pose_gap_to_arbor_m']:.1e}) | "
                      f"{fmt(ms['ate_aligned_rmse_m'])} ({fmt(ms['ate_rmse_m'])}) | "
                      f"{fmt(ar['nees_median'], 3)} / {fmt(ar['nees_in_band_fraction'], 2)} | "
                      f"{fmt(mr['nees_median'], 3)} / {fmt(mr['nees_in_band_fraction'], 2)} | "
                      f"{ar['landmarks']} / {mr['landmarks']} |")
     diverged = [r for r in accuracy if r["diverged_at_s"] is not None]
-    lines += ["", f"MRPT blew up (pose not finite or pose covariance indefinite) in {len(diverged)} of "
-              f"these runs."]
+    indefinite = [r for r in accuracy if r["joint_covariance_indefinite_at_s"] is not None]
+    lines += ["", f"Of these {sum(r['program'] != 'arbor' for r in accuracy)} MRPT runs, {len(diverged)} blew up "
+              f"(pose not finite or pose covariance indefinite) and {len(indefinite)} had an indefinite joint "
+              "covariance at some checked scan."]
 
     t0 = timing[0]
-    mrpt0 = next(r for r in timing if r["program"] == "mrpt")
     lines += ["", f"## Time per scan: {a.timing_landmarks}-landmark world, {a.timing_steps} scans, seed 1, "
               f"{a.timing_repeats} alternating repeats (median of the repeats)", "",
               f"Band: the scans with {math.ceil(0.9 * t0['band_landmarks'])}–{t0['band_landmarks']} landmarks in the "
-              "map (N = the smaller of Arbor's final map and MRPT's map before it blew up).", "",
+              "map (the smallest of the final maps and of the maps at a blow-up).", "",
               "| program | landmarks at the end | median in the band [ms] | median over the run [ms] | p95 [ms] | "
-              "aligned ATE [m] | largest position gap [m] |", "|---|---|---|---|---|---|---|"]
+              "aligned ATE [m] | largest position gap to Arbor [m] | covariance indefinite at / blew up at [s] |",
+              "|---|---|---|---|---|---|---|---|"]
     med = {}
-    for program in ("arbor", "mrpt"):
+    for program in ("arbor", "mrpt", "mrpt_davison"):
         rows = [r for r in timing if r["program"] == program]
         m = {k: statistics.median(r[k] for r in rows) for k in
              ("step_time_band_s", "step_time_median_s", "step_time_p95_s")}
         med[program] = m
-        lines.append(f"| {program} | {rows[0]['landmarks']} | {1e3 * m['step_time_band_s']:.3g} | "
+        r0 = rows[0]
+        lines.append(f"| {program} | {r0['landmarks']} | {1e3 * m['step_time_band_s']:.3g} | "
                      f"{1e3 * m['step_time_median_s']:.3g} | {1e3 * m['step_time_p95_s']:.3g} | "
-                     f"{fmt(rows[0]['ate_aligned_rmse_m'])} | {rows[0]['pose_gap_to_arbor_m']:.1e} |")
-    ratio = med["mrpt"]["step_time_band_s"] / med["arbor"]["step_time_band_s"]
-    lines += ["", f"MRPT / Arbor time per scan in the band: {ratio:.1f}x."]
-    if mrpt0["diverged_at_s"] is not None:
-        lines += ["", f"MRPT's joint covariance was first found indefinite at t = "
-                  f"{fmt(mrpt0['joint_covariance_indefinite_at_s'])} s (checked every 20 scans) and MRPT blew up at "
-                  f"t = {fmt(mrpt0['diverged_at_s'])} s; its ATE is then not finite (–), and the position gap and "
-                  "band are taken before that time."]
+                     f"{fmt(r0['ate_aligned_rmse_m'])} | {r0['pose_gap_to_arbor_m']:.1e} | "
+                     f"{fmt(r0['joint_covariance_indefinite_at_s'])} / {fmt(r0['diverged_at_s'])} |")
+    for program in ("mrpt", "mrpt_davison"):
+        lines += ["", f"{program} / Arbor time per scan in the band: "
+                  f"{med[program]['step_time_band_s'] / med['arbor']['step_time_band_s']:.1f}x."]
+    lines += ["", "A run that blew up has no finite ATE (–); its position gap is taken before the blow-up. The joint "
+              "covariance is checked every 20 scans."]
     lines.append("")
     with open(os.path.join(results, "comparison.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(lines))

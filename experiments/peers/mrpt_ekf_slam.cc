@@ -4,7 +4,11 @@
 // DIR/steps.csv (the same per scan, in `arbor run`'s columns) and DIR/accuracy.json, scored by Arbor's own
 // metric code so that both filters are measured alike.
 //
-// Usage: mrpt_ekf_slam --scenario FILE --out DIR [--stock-start]
+// Usage: mrpt_ekf_slam --scenario FILE --out DIR [--stock-start] [--davison]
+//
+// MRPT's default update (kfEKFNaive) forms K for all of a scan's measurements and P <- (I - K H) P as a dense
+// n x n product: O(n^3) per scan, and not symmetric. --davison takes its other EKF update (kfEKFAlaDavison):
+// one scalar measurement at a time, P <- P - K S K^T on the upper half, mirrored; O(n^2) per scalar.
 //
 // What is matched, and how: MRPT takes one pose increment per scan with a Gaussian covariance in the frame of
 // the previous scan's pose. The increment and its covariance are Arbor's own motion model run from the
@@ -153,13 +157,14 @@ nlohmann::json statistic(const std::vector<double>& values, F f) {
   return values.empty() ? nlohmann::json(nullptr) : nlohmann::json(f(values));
 }
 
-int run(const std::string& scenario_path, const std::string& out_dir, bool stock_start) {
+int run(const std::string& scenario_path, const std::string& out_dir, bool stock_start, bool davison) {
   const arbor::Scenario scenario = arbor::read_scenario(scenario_path);
   PeerFilter filter(scenario.initial_pose, scenario.initial_sigma, stock_start);
   // The sensor noise, as MRPT takes it: a float option, not the observation's own figures.
   filter.options.std_sensor_range = static_cast<float>(scenario.sensor.sigma_range_m);
   filter.options.std_sensor_yaw = static_cast<float>(scenario.sensor.sigma_bearing_rad);
   filter.options.create_simplemap = false;
+  filter.KF_options.method = davison ? mrpt::bayes::kfEKFAlaDavison : mrpt::bayes::kfEKFNaive;
 
   std::vector<arbor::TimedPose> trajectory{{scenario.start_time_s, scenario.initial_pose}};
   std::vector<double> scan_times, nees;
@@ -231,6 +236,7 @@ int run(const std::string& scenario_path, const std::string& out_dir, bool stock
               {"joint_covariance_indefinite_at_s", number_or_null(indefinite_at_s)},
               {"clutter_dropped", clutter_dropped},
               {"stock_start", stock_start},
+              {"kf_method", davison ? "kfEKFAlaDavison" : "kfEKFNaive"},
               {"scenario", scenario_path}});
   return 0;
 }
@@ -239,12 +245,13 @@ int run(const std::string& scenario_path, const std::string& out_dir, bool stock
 
 int main(int argc, char** argv) {
   std::string scenario, out;
-  bool stock_start = false;
+  bool stock_start = false, davison = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--scenario" && i + 1 < argc) scenario = argv[++i];
     else if (arg == "--out" && i + 1 < argc) out = argv[++i];
     else if (arg == "--stock-start") stock_start = true;
+    else if (arg == "--davison") davison = true;
     else {
       std::fprintf(stderr, "unknown argument '%s'\n", arg.c_str());
       scenario.clear();
@@ -252,11 +259,11 @@ int main(int argc, char** argv) {
     }
   }
   if (scenario.empty() || out.empty()) {
-    std::fprintf(stderr, "usage: mrpt_ekf_slam --scenario FILE --out DIR [--stock-start]\n");
+    std::fprintf(stderr, "usage: mrpt_ekf_slam --scenario FILE --out DIR [--stock-start] [--davison]\n");
     return 2;
   }
   try {
-    return run(scenario, out, stock_start);
+    return run(scenario, out, stock_start, davison);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrpt_ekf_slam: %s\n", e.what());
     return 1;
