@@ -32,7 +32,7 @@ template <LandmarkMap Map, AssociationStrategy Assoc>
 class EkfSlam {
  public:
   EkfSlam(const Scenario& scenario, const FastSlamOptions& options)
-      : options_(options), motion_(scenario.motion), R_(scenario.sensor.R()), scan_(scenario.sensor, options),
+      : motion_(scenario.motion), R_(scenario.sensor.R()), scan_(scenario.sensor, options),
         existence_(options, !Assoc::kTraits.uses_ground_truth || options.prune_with_known_association),
         strategy_(options.association),
         state_(scenario.initial_pose, Mat3(scenario.initial_sigma.cwiseProduct(scenario.initial_sigma).asDiagonal())),
@@ -156,8 +156,7 @@ class EkfSlam {
                                        [](const AssociationCandidate& c, LandmarkId v) { return c.id < v; });
       ARBOR_CHECK(it != problem.candidates.end() && it->id == id, "strategy {} paired with landmark {}, not a candidate", Assoc::kName, id);
       const int i = static_cast<int>(it - problem.candidates.begin());
-      const Jacobians& J = jacobians_[i];
-      observations_.push_back({J.slot, range_bearing_innovation(measurements[k].z(), it->z_hat), J.H_pose, J.H_landmark});
+      observations_.push_back({range_bearing_innovation(measurements[k].z(), it->z_hat), &cross_[i]});
       candidate_of_.push_back(i);
     }
     const int k = static_cast<int>(observations_.size());
@@ -208,7 +207,6 @@ class EkfSlam {
     Mat2 H_landmark;
   };
 
-  FastSlamOptions options_;
   MotionModel motion_;
   Mat2 R_;
   ScanProblem<Assoc::kTraits.uses_ground_truth> scan_;
@@ -233,7 +231,7 @@ class EkfSlam {
   std::vector<int> touched_of_;
   std::vector<LandmarkId> erased_;
   std::vector<Jacobians> jacobians_;
-  std::vector<Eigen::Matrix<double, 2, Eigen::Dynamic>> cross_;
+  std::vector<MeasurementCross> cross_;  // per candidate: its rows H P, for the joint covariance and the update
   std::vector<EkfObservation> observations_;
   std::vector<int> candidate_of_;
   Eigen::MatrixXd S_;

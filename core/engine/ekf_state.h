@@ -27,13 +27,14 @@
 
 namespace arbor {
 
-// One paired measurement of an update: its innovation z - h(x, m) and the Jacobians at the current mean,
-// d h / d pose and d h / d landmark.
+// The 2 x n rows H P of one measurement: its prediction's covariance with every state variable.
+using MeasurementCross = Eigen::Matrix<double, 2, Eigen::Dynamic>;
+
+// One paired measurement of an update: its innovation z - h(x, m) and its rows H P at the current mean, as
+// measurement_cross gave them for the association (computed once per candidate, not again for the update).
 struct EkfObservation {
-  int slot = 0;
   Vec2 innovation;
-  Mat23 H_pose;
-  Mat2 H_landmark;
+  const MeasurementCross* cross = nullptr;
 };
 
 class EkfState {
@@ -86,12 +87,12 @@ class EkfState {
 
   // The 2 x n block H P of a measurement of slot with Jacobians H_pose and H_landmark: its covariance with
   // every state variable. Two of them give the innovations' covariance, C_ab = (H P)_a H_b^T.
-  Eigen::Matrix<double, 2, Eigen::Dynamic> measurement_cross(int slot, const Mat23& H_pose, const Mat2& H_landmark) const {
+  MeasurementCross measurement_cross(int slot, const Mat23& H_pose, const Mat2& H_landmark) const {
     require_settled();
     const int n = dimension();
     return H_pose * cov_.topLeftCorner(3, n) + H_landmark * cov_.block(row(slot), 0, 2, n);
   }
-  Mat2 innovation_block(const Eigen::Matrix<double, 2, Eigen::Dynamic>& HP_a, int slot_b, const Mat23& H_pose_b,
+  Mat2 innovation_block(const MeasurementCross& HP_a, int slot_b, const Mat23& H_pose_b,
                         const Mat2& H_landmark_b) const {
     return HP_a.leftCols<3>() * H_pose_b.transpose() + HP_a.middleCols<2>(row(slot_b)) * H_landmark_b.transpose();
   }
@@ -109,7 +110,8 @@ class EkfState {
     Eigen::VectorXd nu(2 * k);
     for (int a = 0; a < k; ++a) {
       const EkfObservation& o = observations[a];
-      PHt.middleCols<2>(2 * a) = (measurement_cross(o.slot, o.H_pose, o.H_landmark)).transpose();
+      ARBOR_CHECK(o.cross != nullptr && o.cross->cols() == n, "EKF observation {} lacks its rows H P", a);
+      PHt.middleCols<2>(2 * a) = o.cross->transpose();
       nu.segment<2>(2 * a) = o.innovation;
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(S);
@@ -138,7 +140,7 @@ class EkfState {
     floor_covariance(&measurement_part);  // rank 1 at zero range
     const int n = dimension();
     reserve(n + 2);
-    const Eigen::Matrix<double, 2, Eigen::Dynamic> cross = J_x * cov_.topLeftCorner(3, n);
+    const MeasurementCross cross = J_x * cov_.topLeftCorner(3, n);
     cov_.block(n, 0, 2, n) = cross;
     cov_.block(0, n, n, 2) = cross.transpose();
     Mat2 own = cross.leftCols<3>() * J_x.transpose() + measurement_part;
