@@ -37,6 +37,14 @@ double process_cpu_s() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+// The timed steps' median and p95 CPU time and their measurements per step, as the plot script reads them.
+void record_step_times(benchmark::State& state, std::vector<double> seconds, std::int64_t measurements) {
+  std::sort(seconds.begin(), seconds.end());
+  state.counters["step_median_s"] = seconds[seconds.size() / 2];
+  state.counters["step_p95_s"] = seconds[std::min(seconds.size() - 1, seconds.size() * 95 / 100)];
+  state.counters["measurements_per_step"] = static_cast<double>(measurements) / seconds.size();
+}
+
 // A drive of `steps` scans on a circle through the field of n landmarks, as far from its edge at every N.
 Scenario circle_through(const std::vector<Landmark>& field, std::int64_t n, int steps) {
   FieldDrive drive;
@@ -79,12 +87,9 @@ void BM_FastSlam_Step(benchmark::State& state) {
     resamples += engine.last_step_stats().resampled;
     ++k;
   }
-  std::sort(seconds.begin(), seconds.end());
+  record_step_times(state, seconds, measurements);
   std::sort(wall.begin(), wall.end());
-  state.counters["step_median_s"] = seconds[seconds.size() / 2];
   state.counters["step_wall_median_s"] = wall[wall.size() / 2];
-  state.counters["step_p95_s"] = seconds[std::min(seconds.size() - 1, seconds.size() * 95 / 100)];
-  state.counters["measurements_per_step"] = static_cast<double>(measurements) / seconds.size();
   state.counters["resample_fraction"] = static_cast<double>(resamples) / seconds.size();
   state.counters["landmarks_best"] = static_cast<double>(engine.last_step_stats().best_landmarks);
   const MapMemoryStats total = engine.memory_stats();
@@ -122,10 +127,7 @@ void BM_Ekf_Step(benchmark::State& state) {
     measurements += static_cast<std::int64_t>(scenario.steps[k].measurements.size());
     ++k;
   }
-  std::sort(seconds.begin(), seconds.end());
-  state.counters["step_median_s"] = seconds[seconds.size() / 2];
-  state.counters["step_p95_s"] = seconds[std::min(seconds.size() - 1, seconds.size() * 95 / 100)];
-  state.counters["measurements_per_step"] = static_cast<double>(measurements) / seconds.size();
+  record_step_times(state, seconds, measurements);
   state.counters["landmarks_best"] = static_cast<double>(engine.last_step_stats().best_landmarks);
   state.counters["bytes_per_particle"] = static_cast<double>(engine.state().bytes());  // the one estimate's
 }

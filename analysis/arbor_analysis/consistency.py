@@ -50,7 +50,9 @@ def make(df, out_dir, results_path=None):
     keys += [c for c in ("particles", "clutter", "dataset") if c in df.columns]
     _, df = ar.drop_identical_map_backends(df, keys + ["map"], ["seed", "scenario"])
     rows, curves = [], []
-    for name, g in df.groupby(keys, dropna=False):
+    groups = df.groupby(keys, dropna=False)
+    few = groups.ngroups <= 6
+    for name, g in groups:
         values = name if isinstance(name, tuple) else (name,)
         label = ", ".join(f"{k} = {int(v) if isinstance(v, float) and v.is_integer() else v}"
                           for k, v in zip(keys, values) if not (isinstance(v, float) and np.isnan(v)))
@@ -63,7 +65,6 @@ def make(df, out_dir, results_path=None):
         rows.append(row)
         # The figure shows the least clutter, and of each filter and strategy the largest particle count
         # unless there are few configurations; a filter without particles (EKF, smoother) always.
-        few = df.groupby(keys, dropna=False).ngroups <= 6
         plotted = (few or all(g[c].iloc[0] == df[c].max() or np.isnan(g[c].iloc[0]) for c in ("particles",) if c in g)) \
             and all(g[c].iloc[0] == df[c].min() for c in ("clutter",) if c in g and g[c].notna().all())
         if plotted and results_path and "run_dir" in g:
