@@ -37,6 +37,7 @@
 #include "core/engine/set_spread.h"
 #include "core/engine/touched_landmark.h"
 #include "core/math/chi_square.h"
+#include "core/models/composed_motion.h"
 #include "core/models/motion_model.h"
 #include "core/models/range_bearing_model.h"
 #include "core/types/scenario.h"
@@ -79,45 +80,13 @@ class FastSlam {
     step_noise_ = motion_.body_noise(step.control, step.time_s - last_time_s_);  // shared by every particle
     last_time_s_ = step.time_s;
     if (step_index_ > 0 && last_n_eff_ < options_.resample_threshold * options_.particles) resample();
-    if (step.has_scan) begin_scan(step);
-    // A step between scans only predicts (a few hundred nanoseconds a particle): chunks of 512 keep the
-    // scheduling overhead from costing more than the work (61,660 such steps on Victoria Park).
-    const bool predict_only = !step.has_scan && options_.motion_sampling == MotionSampling::kPerScan;
-    const int grain = predict_only ? 512 : 1;
-    const auto for_each_particle = [&](int grain_size, const auto& f) {
-      arena_.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(particles_.size()), grain_size), [&](const auto& range) {
-          Scratch& scratch = scratch_.local();
-          for (int i = range.begin(); i != range.end(); ++i) f(particles_[i], i, scratch);
-        });
-      });
-    };
-    if (set_spread_ && step.has_scan && !step.measurements.empty()) {
-      // The set's spread needs every particle's prediction first: two passes with a serial reduction between.
-      for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) {
-        predict_particle(p, step, i);
-        scan_.predict(p.map, p.pose, p.pose_covariance, &s.nearby, &set_spread_->predicted(i));
-      });
-      set_spread_->reduce(weights_);
-      for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) { correct_particle(p, step, i, s); });
-      set_spread_->clear();
-    } else {
-      for_each_particle(grain, [&](ParticleState& p, int i, Scratch& s) {
-        predict_particle(p, step, i);
-        correct_particle(p, step, i, s);
-      });
-    }
-    roughening_kernel_.reset();
-    std::vector<double> log_weights(particles_.size());
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-      log_weights[i] = particles_[i].log_weight;
-      ARBOR_CHECK(!std::isnan(log_weights[i]), "NaN weight for particle {} at step {}", i, step_index_);
-      stats_.hypotheses += particles_[i].step_hypotheses;
-      stats_.tests += particles_[i].step_tests;
-      stats_.budget_exhausted += particles_[i].step_budget_exhausted;
-    }
-    last_n_eff_ = normalize_log_weights(log_weights, &weights_);
-    for (std::size_t i = 0; i < particles_.size(); ++i) particles_[i].log_weight = std::log(weights_[i]);
+    const bool deferred = defers_prediction(step);
+    if (deferred)
+      pending_motion_.add(motion_, step.control, step_noise_);  // composed once for the set (composed_motion.h)
+    else
+      predict_and_correct(step);
+    // A deferred step leaves the weights as they were, unless it resampled (equal weights, N_eff = M).
+    if (!deferred || stats_.resampled) last_n_eff_ = normalize_particle_weights(&particles_, &weights_, step_index_);
     stats_.n_eff = last_n_eff_;
     stats_.best_landmarks = particles_[best_particle()].map.size();
     if (relocalization_ && step.has_scan) relocalize_if_lost(step);
@@ -125,27 +94,22 @@ class FastSlam {
     scan_index_ += step.has_scan;
   }
 
-  // Starts every particle from the same prior map: a map built before the run (the step benchmarks at up
-  // to 10^6 landmarks, relocalisation in a known map). The particles' copies share it, so for a persistent
-  // back end this costs O(M). New landmarks get ids above the prior's; with known association, a prior
-  // landmark's truth_label is the ground-truth id that refers to it. Prior landmarks are taken as they are:
-  // mark them confirmed, or an unknown-association filter will drop them as unconfirmed.
+  // Starts every particle from the same prior map (start_from_prior_map, core/engine/particle.h).
   void set_prior_map(const Map& map) {
     ARBOR_CHECK(step_index_ == 0, "a prior map is set before the first step, not at step {}", step_index_);
-    std::int64_t next = 0;
-    map.for_each([&](const Landmark& lm) { next = std::max<std::int64_t>(next, std::int64_t{lm.id} + 1); });
-    // The readers keep ids to 2^30 - 1 (core/io/field_limits.h); the filter numbers its own landmarks above.
-    ARBOR_CHECK(next <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks", next - 1);
-    for (auto& p : particles_) {
-      p.map = map;
-      p.next_id = next;
-    }
+    start_from_prior_map(map, &particles_);
   }
 
   const StepStats& last_step_stats() const { return stats_; }
   std::int64_t steps_done() const { return step_index_; }
   int particle_count() const { return static_cast<int>(particles_.size()); }
+  // Particle i as of the last step that was not deferred; predicted_pose(i) adds the controls since.
   const Particle<Map>& particle(int i) const { return particles_[i]; }
+  PosePrediction predicted_pose(int i) const {
+    PosePrediction now{particles_[i].pose, particles_[i].pose_covariance};
+    pending_motion_.apply(&now.pose, &now.pose_covariance);
+    return now;
+  }
   double weight(int i) const { return weights_[i]; }
 
   // The particle of highest weight (lowest index on ties).
@@ -153,7 +117,11 @@ class FastSlam {
     return static_cast<int>(std::max_element(weights_.begin(), weights_.end()) - weights_.begin());
   }
 
-  PoseEstimate estimate() const { return weighted_pose_estimate(particles_, weights_); }
+  PoseEstimate estimate() const {
+    std::vector<PosePrediction> now(particles_.size());
+    for (int i = 0; i < particle_count(); ++i) now[i] = predicted_pose(i);
+    return weighted_pose_estimate(now, weights_);
+  }
 
   // The landmarks particle i's resample-move window touched, replayed along the path it holds: equal to what
   // its map holds, which is how the tests check the move's bookkeeping.
@@ -202,22 +170,50 @@ class FastSlam {
     const PoseEstimate set_before_resampling = options_.roughen > 0.0 ? estimate() : PoseEstimate{};
     RandomStream rng(options_.seed, step_index_, 0, RandomPurpose::kResample);
     const std::vector<int> parents = systematic_resample(weights_, rng.uniform());
-    std::vector<ParticleState> next(particles_.size());
-    arena_.execute([&] {
-      tbb::parallel_for(0, static_cast<int>(particles_.size()), [&](int i) { next[i] = particles_[parents[i]]; });
-    });
-    particles_.swap(next);
-    // The old maps are released in parallel too: for the naive back end freeing is as costly as copying.
-    arena_.execute([&] { tbb::parallel_for(0, static_cast<int>(next.size()), [&](int i) { next[i] = ParticleState{}; }); });
+    take_children(parents, &particles_, arena_);
     for (auto& p : particles_) p.log_weight = 0.0;
     weights_.assign(particles_.size(), 1.0 / particles_.size());
     stats_.resampled = true;
-    if (options_.roughen > 0.0) {
-      constexpr double d = 3.0;  // the pose's dimension
-      const double h = options_.roughen * std::pow(4.0 / (particles_.size() * (d + 2.0)), 1.0 / (d + 4.0));
-      roughening_kernel_ = Mat3(h * h * set_before_resampling.covariance);
-    }
+    if (options_.roughen > 0.0)
+      roughening_kernel_ = roughening_kernel(options_.roughen, particle_count(), set_before_resampling.covariance);
     if (moves_) moves_->move_all(particles_, step_index_, arena_, &stats_.moves_proposed, &stats_.moves_accepted);
+  }
+
+  // Every particle through the step: predict, and at a scan associate, update and weight.
+  void predict_and_correct(const ScenarioStep& step) {
+    if (step.has_scan) begin_scan(step);
+    // A step between scans only predicts: chunks of 512 keep the scheduling from costing more than the work.
+    const int grain = !step.has_scan && options_.motion_sampling == MotionSampling::kPerScan ? 512 : 1;
+    const auto for_each_particle = [&](int grain_size, const auto& f) {
+      arena_.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(particles_.size()), grain_size), [&](const auto& range) {
+          Scratch& scratch = scratch_.local();
+          for (int i = range.begin(); i != range.end(); ++i) f(particles_[i], i, scratch);
+        });
+      });
+    };
+    if (set_spread_ && step.has_scan && !step.measurements.empty()) {
+      // The set's spread needs every particle's prediction first: two passes with a serial reduction between.
+      for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) {
+        predict_particle(p, step, i);
+        scan_.predict(p.map, p.pose, p.pose_covariance, &s.nearby, &set_spread_->predicted(i));
+      });
+      set_spread_->reduce(weights_);
+      for_each_particle(1, [&](ParticleState& p, int i, Scratch& s) { correct_particle(p, step, i, s); });
+      set_spread_->clear();
+    } else {
+      for_each_particle(grain, [&](ParticleState& p, int i, Scratch& s) {
+        predict_particle(p, step, i);
+        correct_particle(p, step, i, s);
+      });
+    }
+    roughening_kernel_.reset();
+    pending_motion_.clear();
+    for (const ParticleState& p : particles_) {
+      stats_.hypotheses += p.step_hypotheses;
+      stats_.tests += p.step_tests;
+      stats_.budget_exhausted += p.step_budget_exhausted;
+    }
   }
 
   // One particle's step, along Montemerlo et al. 2003 (FastSLAM 2.0, §3-4), in two parts: predict through
@@ -226,6 +222,7 @@ class FastSlam {
   void predict_particle(ParticleState& p, const ScenarioStep& step, int index) const {
     p.step_hypotheses = p.step_tests = 0;
     p.step_budget_exhausted = false;
+    pending_motion_.apply(&p.pose, &p.pose_covariance);
     if (roughening_kernel_) p.pose_covariance += *roughening_kernel_;
     motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
     if (moves_ && step.has_scan) ResampleMove::predicted(p.pose, p.pose_covariance, &p.move);
@@ -265,6 +262,13 @@ class FastSlam {
     record_pose(p, step);
     p.decisions.push(applied_decisions(step_index_, s.touched, s.touched_of, s.erased));
     if (moves_) moves_->record(drawn_scan(p.move, p.pose, std::move(before), s.touched, s.touched_of, &step.measurements), &p.move);
+  }
+
+  // A step that only predicts, records no pose and has no policy reading the poses between scans is folded
+  // into pending_motion_ (core/models/composed_motion.h).
+  bool defers_prediction(const ScenarioStep& step) const {
+    return !step.has_scan && !step.truth_pose && options_.motion_sampling == MotionSampling::kPerScan &&
+           !roughening_kernel_ && !moves_;
   }
 
   // Replaces the prediction N(pose, P) by one draw from it.
@@ -428,6 +432,7 @@ class FastSlam {
   double log_likelihood_unpaired_ = 0.0;
   double last_time_s_ = 0.0;
   BodyProcessNoise step_noise_;      // the step's control noise in the start frame, shared by every particle
+  ComposedMotion pending_motion_;    // the controls of the deferred steps since the last one that predicted
   bool pose_from_confirmed_ = false;
   bool keep_localities_ = true;
   tbb::task_arena arena_;

@@ -60,7 +60,7 @@ class FilterImpl final : public Filter {
   PoseEstimate estimate() const override { return engine_.estimate(); }
   std::vector<WeightedPose> particles() const override {
     std::vector<WeightedPose> out(engine_.particle_count());
-    for (int i = 0; i < engine_.particle_count(); ++i) out[i] = {engine_.particle(i).pose, engine_.weight(i)};
+    for (int i = 0; i < engine_.particle_count(); ++i) out[i] = {engine_.predicted_pose(i).pose, engine_.weight(i)};
     return out;
   }
   std::vector<TimedPose> best_trajectory() const override {

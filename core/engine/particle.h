@@ -2,10 +2,13 @@
 #ifndef ARBOR_CORE_ENGINE_PARTICLE_H_
 #define ARBOR_CORE_ENGINE_PARTICLE_H_
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
+#include "core/check.h"
 #include "core/engine/loop_closing.h"
 #include "core/engine/map_concept.h"
 #include "core/engine/persistent_history.h"
@@ -66,6 +69,29 @@ struct StepStats {
 struct PoseEstimate {
   Pose2 mean;
   Mat3 covariance = Mat3::Zero();
+};
+
+// Starts every particle from the same prior map: a map built before the run (the step benchmarks at up to
+// 10^6 landmarks, relocalisation in a known map). The particles' copies share it, so for a persistent back end
+// this costs O(M). New landmarks get ids above the prior's; with known association, a prior landmark's
+// truth_label is the ground-truth id that refers to it. Prior landmarks are taken as they are: mark them
+// confirmed, or an unknown-association filter will drop them as unconfirmed.
+template <class Map, class Particle>
+void start_from_prior_map(const Map& map, std::vector<Particle>* particles) {
+  std::int64_t next = 0;
+  map.for_each([&](const Landmark& lm) { next = std::max<std::int64_t>(next, std::int64_t{lm.id} + 1); });
+  // The readers keep ids to 2^30 - 1 (core/io/field_limits.h); the filter numbers its own landmarks above.
+  ARBOR_CHECK(next <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks", next - 1);
+  for (auto& p : *particles) {
+    p.map = map;
+    p.next_id = next;
+  }
+}
+
+// One particle's predicted pose: its mean and the covariance of the controls since its last draw.
+struct PosePrediction {
+  Pose2 pose;
+  Mat3 pose_covariance = Mat3::Zero();
 };
 
 // The set's PoseEstimate under weights (one per particle).
