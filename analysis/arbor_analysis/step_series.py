@@ -1,12 +1,14 @@
-"""The filter over time: the step time per map back end (rolling median over 25 steps) and the effective
-sample size N_eff / particles (rolling median with its 10-90 % band) per filter and association strategy, on one representative run of each
-configuration (the largest particle count and world, the least clutter, the first seed), with a table of
-step-time quantiles, mean N_eff and how often the filter resampled.
-Reads: results.jsonl (filter, map, assoc, particles, seed, run_dir) and each run's steps.csv."""
+"""The filter over time: the time per scan per map back end (the step time in runs whose steps.csv does not mark
+the scans), as a rolling median over 25, and the effective sample size N_eff / particles (rolling median with
+its 10-90 % band) per filter and association strategy, each line named at its end, on one representative run of
+each configuration (the largest particle count and world, the least clutter, the first seed), with a table of
+time-per-scan quantiles (and step-time ones where a step is not a scan), mean N_eff and how often the filter
+resampled. Reads: results.jsonl (filter, map, assoc, particles, seed, run_dir) and each run's steps.csv."""
 
 import os
 import sys
 
+from . import multiples
 from . import results as ar
 
 FIGURE = "step_time_and_neff.png"
@@ -19,6 +21,20 @@ def read_steps(results_dir, run_dir):
         return None
     steps = ar.pd.read_csv(path)
     return steps if {"time_s", "step_time_s", "n_eff"} <= set(steps.columns) and len(steps) else None
+
+
+def per_scan_times(steps):
+    """The time per scan from steps.csv's scan column, as `arbor run` computes its scan_time_median_s: per
+    scan, its step's time and that of the odometry-only steps since the previous scan (steps after the last
+    scan are no scan's work). A frame of time_s (the scan's) and scan_time_s, or None for a steps.csv that
+    predates the column."""
+    if "scan" not in steps:
+        return None
+    scan = steps["scan"].fillna(0).astype(int).to_numpy()
+    owner = ar.np.cumsum(scan[::-1])[::-1]  # per step, how many scans remain from it on: one number per scan
+    times = steps["step_time_s"].groupby(owner).sum()
+    at = steps.loc[scan == 1, "time_s"].to_numpy()
+    return ar.pd.DataFrame({"time_s": at, "scan_time_s": times.loc[owner[scan == 1]].to_numpy()})
 
 
 def representative_runs(df):
@@ -38,8 +54,10 @@ def neff_band(ax, time_s, share, label):
     """N_eff / particles as its rolling median over WINDOW steps with the 10-90 % band around it. Drawn step by
     step it swings between resamplings every few steps, and several runs' lines fill the axes as a solid block."""
     rolling = share.rolling(WINDOW, min_periods=1, center=True)
-    line, = ax.plot(time_s, rolling.median(), lw=1.2, label=label)
+    median = rolling.median()
+    line, = ax.plot(time_s, median, lw=1.2)
     ax.fill_between(time_s, rolling.quantile(0.1), rolling.quantile(0.9), color=line.get_color(), alpha=0.2, lw=0)
+    return time_s.iloc[-1], median.iloc[-1], label, line.get_color()
 
 
 def make(df, out_dir, results_path=None):
@@ -57,41 +75,54 @@ def make(df, out_dir, results_path=None):
             continue
         run = g.iloc[0]
         share = steps["n_eff"] / run["particles"]
-        rows.append({"configuration": ar.label(run, shown), "particles": int(run["particles"]),
-                     "median step time (ms)": ar.fmt_num(1e3 * steps["step_time_s"].median()),
-                     "p95 step time (ms)": ar.fmt_num(1e3 * steps["step_time_s"].quantile(0.95)),
-                     "mean N_eff / particles": ar.fmt_num(float(share.mean())),
-                     "steps resampled": (f"{100 * steps['resampled'].mean():.0f} %" if "resampled" in steps else "–")})
-        series.append((run, steps))
+        scans = per_scan_times(steps)
+        row = {"configuration": ar.label(run, shown), "particles": int(run["particles"])}
+        if scans is not None and len(scans):  # the time that keeping up with the sensor takes
+            row["median time per scan (ms)"] = ar.fmt_num(1e3 * scans["scan_time_s"].median())
+            row["p90 time per scan (ms)"] = ar.fmt_num(1e3 * scans["scan_time_s"].quantile(0.9))
+        if scans is None or len(scans) < len(steps):  # a step is not a scan: its own time, for older runs too
+            row["median step time (ms)"] = ar.fmt_num(1e3 * steps["step_time_s"].median())
+            row["p95 step time (ms)"] = ar.fmt_num(1e3 * steps["step_time_s"].quantile(0.95))
+        row["mean N_eff / particles"] = ar.fmt_num(float(share.mean()))
+        row["steps resampled"] = f"{100 * steps['resampled'].mean():.0f} %" if "resampled" in steps else "–"
+        rows.append(row)
+        series.append((run, steps, scans))
     if not series:
         return []
     fig, (time_ax, neff_ax) = ar.plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
-    # Step time: one line per map back end, for one filter and strategy (their output is the same per back
-    # end; the time is what differs). N_eff: one line per filter and strategy, for one back end.
-    filter_shown = preferred([r["filter"] for r, _ in series], ["fastslam2", "fastslam1"])
-    assoc_shown = preferred([r.get("assoc") for r, _ in series], ["jcbb", "nn", "locality", "known"])
-    map_shown = preferred([r.get("map") for r, _ in series], ["trie", "tree", "naive"])
-    for run, steps in series:
+    # Time: one line per map back end, for one filter and strategy (their output is the same per back end; the
+    # time is what differs), per scan where the runs mark their scans. N_eff: one line per filter and
+    # strategy, for one back end. Each line is named at its end.
+    filter_shown = preferred([r["filter"] for r, _, _ in series], ["fastslam2", "fastslam1"])
+    assoc_shown = preferred([r.get("assoc") for r, _, _ in series], ["jcbb", "nn", "locality", "known"])
+    map_shown = preferred([r.get("map") for r, _, _ in series], ["trie", "tree", "naive"])
+    per_scan = all(scans is not None and len(scans) for _, _, scans in series)
+    time_ends, neff_ends = [], []
+    for run, steps, scans in series:
         if run["filter"] == filter_shown and run.get("assoc") == assoc_shown:
-            rolling = steps["step_time_s"].rolling(WINDOW, min_periods=1).median()
-            time_ax.plot(steps["time_s"], 1e3 * rolling, label=f"map = {run.get('map')}")
+            t, cost = (scans["time_s"], scans["scan_time_s"]) if per_scan else (steps["time_s"], steps["step_time_s"])
+            rolling = 1e3 * cost.rolling(WINDOW, min_periods=1).median()
+            line, = time_ax.plot(t, rolling)
+            time_ends.append((t.iloc[-1], rolling.iloc[-1], f"map = {run.get('map')}", line.get_color()))
         if run.get("map") == map_shown:
-            neff_band(neff_ax, steps["time_s"], steps["n_eff"] / run["particles"],
-                      ar.label(run, [c for c in shown if c != "map"] or ["filter"]))
+            name = ar.label(run, [c for c in shown if c != "map"] or ["filter"])
+            neff_ends.append(neff_band(neff_ax, steps["time_s"], steps["n_eff"] / run["particles"], name))
     time_ax.set_yscale("log")
     time_ax.set_xlabel("time (s)")
-    time_ax.set_ylabel(f"step time (ms), rolling median of {WINDOW}")
-    time_ax.set_title(f"{filter_shown}/{assoc_shown}: step time per map back end")
+    what = "time per scan" if per_scan else "step time"
+    time_ax.set_ylabel(f"{what} (ms), rolling median of {WINDOW}")
+    time_ax.set_title(f"{filter_shown}/{assoc_shown}: {what} per map back end")
     neff_ax.set_ylim(0, 1.05)
     neff_ax.set_xlabel("time (s)")
     neff_ax.set_ylabel(f"N_eff / particles: rolling median, 10–90 % of {WINDOW} steps")
     neff_ax.set_title(f"effective sample size (map = {map_shown})")
-    for ax in (time_ax, neff_ax):
+    for ax, ends in ((time_ax, time_ends), (neff_ax, neff_ends)):
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-    return ar.figure_section(fig, out_dir, FIGURE, "Step time and effective sample size over time", rows,
-                             "One run per configuration: the largest particle count and world, the least "
-                             "clutter, the first seed.")
+        multiples.label_ends(ax, ends)
+    note = ("One run per configuration: the largest particle count and world, the least clutter, the first seed."
+            + (" Time per scan: a scan's step and the odometry-only steps since the previous scan." if per_scan else ""))
+    return ar.figure_section(fig, out_dir, FIGURE, "Time per scan and effective sample size over time" if per_scan
+                             else "Step time and effective sample size over time", rows, note)
 
 
 if __name__ == "__main__":
