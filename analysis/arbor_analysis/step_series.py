@@ -89,15 +89,20 @@ def make(df, out_dir, results_path=None):
         series.append((run, steps, scans))
     if not series:
         return []
-    fig, (time_ax, neff_ax) = ar.plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
     # Time: one line per map back end, for one filter and strategy (their output is the same per back end; the
-    # time is what differs), per scan where the runs mark their scans. N_eff: one line per filter and
-    # strategy, for one back end. Each line is named at its end.
+    # time is what differs), per scan where the runs mark their scans. N_eff: one panel per strategy, one band
+    # per filter in it, for one back end: several bands on one axes fill it as a block. Lines named at their end.
     filter_shown = preferred([r["filter"] for r, _, _ in series], ["fastslam2", "fastslam1"])
     assoc_shown = preferred([r.get("assoc") for r, _, _ in series], ["jcbb", "nn", "locality", "known"])
     map_shown = preferred([r.get("map") for r, _, _ in series], ["trie", "tree", "naive"])
+    strategies = sorted({str(r.get("assoc")) for r, _, _ in series if r.get("map") == map_shown},
+                        key=lambda a: (a == ar.ORACLE_ASSOC, a))
+    fig, axes = ar.plt.subplots(1, 1 + len(strategies), figsize=(5.4 + 3.4 * len(strategies), 4.2),
+                                layout="constrained", squeeze=False)
+    time_ax, neff_axes = axes[0][0], dict(zip(strategies, axes[0][1:]))
     per_scan = all(scans is not None and len(scans) for _, _, scans in series)
-    time_ends, neff_ends = [], []
+    time_ends, neff_ends = [], {a: [] for a in strategies}
+    in_line = [c for c in shown if c not in ("map", "assoc")] or ["filter"]
     for run, steps, scans in series:
         if run["filter"] == filter_shown and run.get("assoc") == assoc_shown:
             t, cost = (scans["time_s"], scans["scan_time_s"]) if per_scan else (steps["time_s"], steps["step_time_s"])
@@ -105,20 +110,28 @@ def make(df, out_dir, results_path=None):
             line, = time_ax.plot(t, rolling)
             time_ends.append((t.iloc[-1], rolling.iloc[-1], f"map = {run.get('map')}", line.get_color()))
         if run.get("map") == map_shown:
-            name = ar.label(run, [c for c in shown if c != "map"] or ["filter"])
-            neff_ends.append(neff_band(neff_ax, steps["time_s"], steps["n_eff"] / run["particles"], name))
+            assoc = str(run.get("assoc"))
+            neff_ends[assoc].append(neff_band(neff_axes[assoc], steps["time_s"], steps["n_eff"] / run["particles"],
+                                              ar.label(run, in_line)))
     time_ax.set_yscale("log")
     time_ax.set_xlabel("time (s)")
     what = "time per scan" if per_scan else "step time"
     time_ax.set_ylabel(f"{what} (ms), rolling median of {WINDOW}")
     time_ax.set_title(f"{filter_shown}/{assoc_shown}: {what} per map back end")
-    neff_ax.set_ylim(0, 1.05)
-    neff_ax.set_xlabel("time (s)")
-    neff_ax.set_ylabel(f"N_eff / particles: rolling median, 10–90 % of {WINDOW} steps")
-    neff_ax.set_title(f"effective sample size (map = {map_shown})")
-    for ax, ends in ((time_ax, time_ends), (neff_ax, neff_ends)):
+    for assoc, ax in neff_axes.items():
+        ax.set_ylim(0, 1.05)
+        ax.set_xlabel("time (s)")
+        role = ar.role({"assoc": assoc})
+        ax.set_title(f"N_eff: {assoc}{f' ({role})' if role else ''}, map = {map_shown}", fontsize=10)
+        if ax is not axes[0][1]:
+            ax.sharey(axes[0][1])
+            ax.tick_params(labelleft=False)
+    axes[0][1].set_ylabel(f"N_eff / particles: rolling median, 10–90 % of {WINDOW} steps")
+    time_ax.grid(True, alpha=0.3)
+    multiples.label_ends(time_ax, time_ends)
+    for assoc, ax in neff_axes.items():
         ax.grid(True, alpha=0.3)
-        multiples.label_ends(ax, ends)
+        multiples.label_ends(ax, neff_ends[assoc])
     note = ("One run per configuration: the largest particle count and world, the least clutter, the first seed."
             + (" Time per scan: a scan's step and the odometry-only steps since the previous scan." if per_scan else ""))
     return ar.figure_section(fig, out_dir, FIGURE, "Time per scan and effective sample size over time" if per_scan

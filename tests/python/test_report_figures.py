@@ -93,3 +93,25 @@ def test_the_step_series_times_scans_where_steps_csv_marks_them(tmp_path):
     sections = step_series.make(ar.load_results(str(tmp_path)), str(tmp_path), str(tmp_path))
     assert sections[0].title == "Time per scan and effective sample size over time"
     assert "| tree | 10 | 6 | 6 | 1 | 3 |" in sections[0].text  # 6 ms a scan; 1 ms the median step, 3 its p95
+
+
+def test_the_nees_curves_are_one_panel_per_strategy_sharing_one_axis(tmp_path, monkeypatch):
+    from arbor_analysis import consistency
+    rows = []
+    for filter_ in ("fastslam1", "fastslam2"):
+        for assoc, growth in (("nn", 10.0), ("known", 1.0)):
+            key = f"{filter_}-{assoc}"
+            run = tmp_path / key
+            run.mkdir()
+            nees = "\n".join(f"{k},{0.1 * k},{1 + growth * k / 10}" for k in range(10))
+            (run / "steps.csv").write_text("step,time_s,nees\n" + nees + "\n", encoding="utf-8")
+            rows.append({"key": key, "status": "ok", "filter": filter_, "assoc": assoc, "particles": 10, "seed": 1,
+                         "scenario": "w.scn", "run_dir": key, "nees_in_band_fraction": 0.9, "nees_median": 2.0})
+    figures = []
+    monkeypatch.setattr(ar, "save_figure", lambda fig, out, name: figures.append(fig))
+    consistency.make(ar.pd.DataFrame(rows), str(tmp_path), str(tmp_path))
+    panels = [ax for ax in figures[0].axes if ax.get_title()]
+    assert [ax.get_title() for ax in panels] == ["nn", "known (oracle)"]
+    assert panels[0].get_ylim() == panels[1].get_ylim()  # nn's larger NEES is on known's axis too
+    assert all(ax.get_legend() is None for ax in panels)
+    assert sorted(t.get_text() for t in panels[1].texts) == ["fastslam1 (1 run)", "fastslam2 (1 run)"]
