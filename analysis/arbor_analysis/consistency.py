@@ -63,7 +63,8 @@ def median_nees_figure(curves, keys, out_dir):
             median = np.median(np.vstack([s["nees"].to_numpy()[:n] for s in series]), axis=0)
             colour, dash = style([g], in_line)
             ax.plot(t, median, linewidth=1.0, color=colour, linestyle=dash)
-            ends[-1].append((t[-1], median[-1], f"{multiples.line_label([g], in_line)} ({len(series)} run{'s' if len(series) > 1 else ''})", colour))
+            runs = f"{len(series)} run{'s' if len(series) > 1 else ''}"
+            ends[-1].append((t[-1], median[-1], f"{multiples.line_label([g], in_line)} ({runs})", colour))
         ax.set_yscale("log")
         ax.set_xlabel("time (s)")
         ax.set_title(multiples.panel_title(column, value), fontsize=10)

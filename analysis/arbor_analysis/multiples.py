@@ -22,7 +22,8 @@ def panels_of(shown, groups):
     column = next((c for c in PANEL_ORDER if c in shown and len({g[c].iloc[0] for g in groups}) > 1), None)
     if column is None:
         return None, [(None, groups)]
-    values = sorted({g[column].iloc[0] for g in groups}, key=lambda v: (v in (ar.ORACLE_ASSOC, ar.REFERENCE_FILTER), str(v)))
+    bounds = (ar.ORACLE_ASSOC, ar.REFERENCE_FILTER)
+    values = sorted({g[column].iloc[0] for g in groups}, key=lambda v: (v in bounds, str(v)))
     return column, [(v, [g for g in groups if g[column].iloc[0] == v]) for v in values]
 
 

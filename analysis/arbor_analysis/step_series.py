@@ -133,7 +133,7 @@ def make(df, out_dir, results_path=None):
         ax.grid(True, alpha=0.3)
         multiples.label_ends(ax, neff_ends[assoc])
     note = ("One run per configuration: the largest particle count and world, the least clutter, the first seed."
-            + (" Time per scan: a scan's step and the odometry-only steps since the previous scan." if per_scan else ""))
+            + (" Time per scan: a scan's step and the odometry-only steps before it." if per_scan else ""))
     return ar.figure_section(fig, out_dir, FIGURE, "Time per scan and effective sample size over time" if per_scan
                              else "Step time and effective sample size over time", rows, note)
 
