@@ -13,6 +13,7 @@ from . import results as ar
 
 FIGURE = "step_time_and_neff.png"
 WINDOW = 25  # steps in the step time's rolling median: one slow step (a resample, a page fault) is not a trend
+POINTS_ACROSS = 300  # the most rolling windows the N_eff band spans across its axes
 
 
 def read_steps(results_dir, run_dir):
@@ -50,14 +51,26 @@ def preferred(values, order):
     return next((v for v in order if v in set(values)), sorted(values, key=str)[0])
 
 
+def neff_window(length):
+    """Samples in the N_eff band's rolling window: WINDOW, or more on a long log, so that the band has at most
+    POINTS_ACROSS windows across the axes; with 7,000 scans a 25-scan window still swings too fast to read."""
+    return max(WINDOW, length // POINTS_ACROSS)
+
+
 def neff_band(ax, time_s, share, label):
-    """N_eff / particles as its rolling median over WINDOW steps with the 10-90 % band around it. Drawn step by
-    step it swings between resamplings every few steps, and several runs' lines fill the axes as a solid block."""
-    rolling = share.rolling(WINDOW, min_periods=1, center=True)
+    """N_eff / particles as its rolling median with the 10-90 % band around it. Drawn sample by sample it swings
+    between resamplings every few steps, and several runs' lines fill the axes as a solid block."""
+    rolling = share.rolling(neff_window(len(share)), min_periods=1, center=True)
     median = rolling.median()
     line, = ax.plot(time_s, median, lw=1.2)
     ax.fill_between(time_s, rolling.quantile(0.1), rolling.quantile(0.9), color=line.get_color(), alpha=0.2, lw=0)
     return time_s.iloc[-1], median.iloc[-1], label, line.get_color()
+
+
+def at_scans(steps):
+    """The steps that carried a scan, where steps.csv marks them: between scans N_eff does not change, so on a
+    real log the odometry steps would only repeat each scan's value ten times over."""
+    return steps[steps["scan"] == 1] if "scan" in steps and (steps["scan"] == 1).any() else steps
 
 
 def make(df, out_dir, results_path=None):
@@ -111,7 +124,10 @@ def make(df, out_dir, results_path=None):
             time_ends.append((t.iloc[-1], rolling.iloc[-1], f"map = {run.get('map')}", line.get_color()))
         if run.get("map") == map_shown:
             assoc = str(run.get("assoc"))
-            neff_ends[assoc].append(neff_band(neff_axes[assoc], steps["time_s"], steps["n_eff"] / run["particles"],
+            sampled = at_scans(steps)
+            samples = "scans" if len(sampled) < len(steps) else "steps"
+            window = neff_window(len(sampled))
+            neff_ends[assoc].append(neff_band(neff_axes[assoc], sampled["time_s"], sampled["n_eff"] / run["particles"],
                                               ar.label(run, in_line)))
     time_ax.set_yscale("log")
     time_ax.set_xlabel("time (s)")
@@ -126,7 +142,7 @@ def make(df, out_dir, results_path=None):
         if ax is not axes[0][1]:
             ax.sharey(axes[0][1])
             ax.tick_params(labelleft=False)
-    axes[0][1].set_ylabel(f"N_eff / particles: rolling median, 10–90 % of {WINDOW} steps")
+    axes[0][1].set_ylabel(f"N_eff / particles: rolling median, 10–90 % of {window} {samples}")
     time_ax.grid(True, alpha=0.3)
     multiples.label_ends(time_ax, time_ends)
     for assoc, ax in neff_axes.items():
