@@ -315,10 +315,11 @@ void bind_run(py::module_& m) {
       .def_property_readonly("map", [](const RunOutput& o) { return map_dict(o.map); })
       .def_property_readonly("steps", [](const RunOutput& o) {
             const auto& s = o.steps;
-            py::array_t<bool> resampled(s.size());
+            py::array_t<bool> resampled(s.size()), scan(s.size());
             py::array_t<std::int64_t> landmarks(s.size()), hypotheses(s.size());
             for (std::size_t i = 0; i < s.size(); ++i) {
               resampled.mutable_at(i) = s[i].resampled;
+              scan.mutable_at(i) = s[i].scan;
               landmarks.mutable_at(i) = static_cast<std::int64_t>(s[i].landmarks);
               hypotheses.mutable_at(i) = s[i].hypotheses;
             }
@@ -333,6 +334,7 @@ void bind_run(py::module_& m) {
             d["landmarks"] = landmarks;
             d["hypotheses"] = hypotheses;
             d["nees"] = column([](const StepRecord& r) { return r.nees.value_or(NAN); });
+            d["scan"] = scan;
             return d;
           })
       .def("to_dir", [](const RunOutput& o, const std::filesystem::path& dir) {

@@ -16,6 +16,7 @@ import sys
 import numpy as np
 import pandas as pd
 
+from . import multiples
 from . import results as ar
 
 SINGLE_RUN_BAND = (0.2158, 9.3484)
@@ -39,6 +40,39 @@ def scan_nees(run_dir):
     # The start is known exactly: its NEES is 0/0 (written as ~0), not a sample of the statistic.
     s = s[s["nees"].notna() & (s["time_s"] > s["time_s"].min())]
     return s[["step", "time_s", "nees"]].reset_index(drop=True)
+
+
+def median_nees_figure(curves, keys, out_dir):
+    """The median NEES over each configuration's runs at every scan, as small multiples: one panel per
+    strategy (or filter), all on one log axis with the single-run band, each curve named at its end."""
+    groups = [g for g, _ in curves]
+    series_of = {id(g): series for g, series in curves}
+    shown = ar.varying(pd.concat(groups), keys) or ["filter"]
+    column, panels = multiples.panels_of(shown, groups)
+    in_line = [c for c in shown if c != column]
+    fig, axes = multiples.grid(1, len(panels), width=4.2, height=3.6, sharey=True)
+    style = multiples.Styles()
+    ends = []
+    for ax, (value, lines) in zip(axes[0], panels):
+        ax.axhspan(*SINGLE_RUN_BAND, color="tab:green", alpha=0.12)
+        ends.append([])
+        for g in lines:
+            series = series_of[id(g)]
+            n = min(len(s) for s in series)
+            t = series[0]["time_s"].to_numpy()[:n]
+            median = np.median(np.vstack([s["nees"].to_numpy()[:n] for s in series]), axis=0)
+            colour, dash = style([g], in_line)
+            ax.plot(t, median, linewidth=1.0, color=colour, linestyle=dash)
+            runs = f"{len(series)} run{'s' if len(series) > 1 else ''}"
+            ends[-1].append((t[-1], median[-1], f"{multiples.line_label([g], in_line)} ({runs})", colour))
+        ax.set_yscale("log")
+        ax.set_xlabel("time (s)")
+        ax.set_title(multiples.panel_title(column, value), fontsize=10)
+    for ax, panel_ends in zip(axes[0], ends):  # once every panel is drawn: they share the y axis
+        multiples.label_ends(ax, panel_ends)
+    axes[0][0].set_ylabel("pose NEES, median over runs")
+    fig.suptitle("Pose NEES over time; green: the single-run 95 % band of χ²(3)")
+    ar.save_figure(fig, out_dir, FIGURE)
 
 
 def make(df, out_dir, results_path=None):
@@ -71,27 +105,16 @@ def make(df, out_dir, results_path=None):
             series = [scan_nees(os.path.join(results_path, d)) for d in g["run_dir"] if isinstance(d, str)]
             series = [s for s in series if s is not None and len(s)]
             if series:
-                curves.append((label, series))
+                curves.append((g, label, series))
     text = ["Share of scans whose pose NEES lies in the two-sided 95 % χ²(3) band [0.216, 9.348] "
             "(a consistent filter: 0.95).", "", ar.markdown_table(pd.DataFrame(rows)), ""]
     if curves:
-        fig, ax = ar.new_figure(7.0, 4.4)
-        ax.axhspan(*SINGLE_RUN_BAND, color="tab:green", alpha=0.12, label="single-run 95 % band")
-        for label, series in curves:
-            n = min(len(s) for s in series)
-            stacked = np.vstack([s["nees"].to_numpy()[:n] for s in series])
-            t = series[0]["time_s"].to_numpy()[:n]
-            ax.plot(t, np.median(stacked, axis=0), linewidth=1.0, label=f"{label} (median of {len(series)})")
-        ax.set_yscale("log")
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("pose NEES")
-        ax.legend(fontsize=6, loc="upper left")
-        ar.save_figure(fig, out_dir, FIGURE)
+        median_nees_figure([(g, series) for g, _, series in curves], keys, out_dir)
         text.append(f"![NEES over time]({FIGURE})")
-        many = [(label, series) for label, series in curves if len(series) >= 30]
+        many = [(g, label, series) for g, label, series in curves if len(series) >= 30]
         if many:
             fig, ax = ar.new_figure(7.0, 4.4)
-            for label, series in many:
+            for _, label, series in many:
                 n_runs = len(series)
                 n = min(len(s) for s in series)
                 mean = np.mean(np.vstack([s["nees"].to_numpy()[:n] for s in series]), axis=0)
@@ -99,7 +122,7 @@ def make(df, out_dir, results_path=None):
             n_runs = min(len(s) for _, s in many)
             lo, hi = chi2_band(3 * n_runs, 0.025) / n_runs, chi2_band(3 * n_runs, 0.975) / n_runs
             inside = []
-            for label, series in many:  # the average over the first 30 runs, scan by scan
+            for _, label, series in many:  # the average over the first 30 runs, scan by scan
                 n = min(min(len(s) for s in series), AVERAGE_SCANS)
                 mean = np.mean(np.vstack([s["nees"].to_numpy()[:n] for s in series[:30]]), axis=0)
                 inside.append({"configuration": label, "scans": n, "average NEES median": ar.fmt_num(np.median(mean)),

@@ -107,25 +107,28 @@ def varying(df, columns):
     return [c for c in columns if c in df.columns and df[c].nunique(dropna=True) > 1]
 
 
-def lines_for(df, x, min_points=2, collapse_identical_maps=False):
+def line_groups(df, x, min_points=2, collapse_identical_maps=False):
     """The groups of rows that make one line each in a figure with x on the horizontal axis: rows grouped by
     every method and context column that varies (except x), keeping groups with at least min_points distinct
-    x values. Yields (label, rows); the label names only the columns that differ between the kept lines.
+    x values. Returns (shown, groups): the columns that differ between the kept lines, and the rows of each.
     With collapse_identical_maps, one line stands for all map back ends where their ATE agrees run for run."""
     df = df[df[x].notna()]
     by = [c for c in varying(df, method_columns(df) + CONTEXT) if c != x]
     if collapse_identical_maps:  # for accuracy figures only: timings do differ between back ends
         by, df = drop_identical_map_backends(df, by, [x, "seed"])
     if not by:
-        if df[x].nunique() >= min_points:
-            yield "all runs", df
-        return
+        return [], ([df] if df[x].nunique() >= min_points else [])
     kept = [g for _, g in df.groupby(by if len(by) > 1 else by[0], sort=True, dropna=False) if g[x].nunique() >= min_points]
     if not kept:
-        return
-    shown = varying(pd.concat(kept), by) or ["filter"]
-    for g in kept:
-        yield label(g.iloc[0], shown), g
+        return [], []
+    return varying(pd.concat(kept), by) or ["filter"], kept
+
+
+def lines_for(df, x, min_points=2, collapse_identical_maps=False):
+    """line_groups as (label, rows) per line; the label names only the columns that differ between lines."""
+    shown, groups = line_groups(df, x, min_points, collapse_identical_maps)
+    for g in groups:
+        yield (label(g.iloc[0], shown) if shown else "all runs"), g
 
 
 def drop_identical_map_backends(df, by, keys):

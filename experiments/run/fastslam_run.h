@@ -1,6 +1,6 @@
 // One FastSLAM run from a scenario to its result files (DESIGN.md §9): DIR/result.json, DIR/trajectory.tum
 // (best particle), DIR/trajectory_mean.tum (weighted mean), DIR/map.csv (best particle's map),
-// DIR/associations.csv (best particle's decisions), DIR/steps.csv (per-step time, N_eff, landmarks, NEES) and,
+// DIR/associations.csv (best particle's decisions), DIR/steps.csv (per-step time, N_eff, landmarks, NEES, whether it held a scan) and,
 // where the scenario has a ground truth or GPS track, DIR/reference.tum (experiments/run/reference_trajectory.h).
 #ifndef ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 #define ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
@@ -33,6 +33,7 @@ struct StepRecord {
   std::int64_t hypotheses = 0;
   std::optional<double> nees;      // at steps with a truth pose
   bool relocalized = false;        // every particle was re-seeded at a relocalised pose (--relocalize)
+  bool scan = false;               // the step carried a scan (real logs have many odometry-only steps)
 };
 
 // Everything a run leaves: write_run_files turns it into the files of DESIGN.md §9.
@@ -46,6 +47,12 @@ struct RunOutput {
   std::vector<StepDecisions> decisions;  // the best particle's
   std::vector<StepRecord> steps;         // one per scenario step
 };
+
+// The filter's time per scan: for each step that carried a scan, the summed step time of the odometry-only
+// steps since the previous scan and of the scan's own step. On a real log a scan follows many odometry steps,
+// so the time per step understates what keeping up with the sensor costs; steps after the last scan are no
+// scan's work and are left out.
+std::vector<double> per_scan_times(const std::vector<StepRecord>& steps);
 
 // The filter a run uses: the config's variants and options, started from its prior map when it names one
 // (arbor.Filter steps the same filter by hand).

@@ -254,7 +254,8 @@ const std::vector<std::string>& known_metrics() {
       "consistency_horizon_scan", "dead_reckoning_ate_m", "hypotheses",
       "landmark_rmse_m", "landmarks", "loop_closures", "map_bytes_per_particle", "map_shared_fraction", "n_eff_mean",
       "nees_in_band_fraction", "nees_mean", "nees_median", "observed_true_landmarks", "peak_rss_bytes",
-      "move_acceptance", "provisional_landmarks", "rejected_measurements", "relocalizations", "resamples", "scenario_duration_s",
+      "move_acceptance", "provisional_landmarks", "rejected_measurements", "relocalizations", "resamples",
+      "scan_time_median_s", "scan_time_p90_s", "scans", "scenario_duration_s",
       "spurious_landmarks", "step_time_median_s", "step_time_p95_s", "steps", "true_landmarks", "wall_time_s",
       // arbor smooth only
       "associations_used", "build_time_s", "factors", "final_cost", "gradient_max_norm", "initial_cost",
@@ -273,7 +274,9 @@ std::vector<std::string> default_metrics(bool with_smoother) {
                              "nees_in_band_fraction", "rejected_measurements",
                              // issue 41: the failure rate needs the aligned ATE beside the smoother's and dead
                              // reckoning's; the consistency horizon says from when a run is overconfident
-                             "ate_aligned_rmse_m", "dead_reckoning_ate_m", "consistency_horizon_scan"};
+                             "ate_aligned_rmse_m", "dead_reckoning_ate_m", "consistency_horizon_scan",
+                             // issue 44: on real logs most steps are odometry only; the report times scans
+                             "scan_time_median_s", "scan_time_p90_s", "scans"};
   if (with_smoother) m.insert(m.end(), {"solve_time_s", "iterations", "initial_cost", "final_cost", "termination"});
   return m;
 }

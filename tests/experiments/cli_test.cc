@@ -120,10 +120,10 @@ TEST(Cli, StepsCsvMarksTheScanThatRelocalized) {
     std::ifstream csv(out + "/steps.csv");
     std::string line;
     std::getline(csv, line);
-    EXPECT_TRUE(line.ends_with(",nees,relocalized")) << line;
+    EXPECT_TRUE(line.ends_with(",nees,relocalized,scan")) << line;
     std::vector<int> marked;
-    while (std::getline(csv, line))
-      if (line.ends_with(",1")) marked.push_back(std::stoi(line.substr(0, line.find(','))));
+    while (std::getline(csv, line))  // relocalized is the next to last column, before scan
+      if (line.ends_with(",1,1") || line.ends_with(",1,0")) marked.push_back(std::stoi(line.substr(0, line.find(','))));
     return marked;
   };
   const std::vector<int> relocalized = marked_steps("--relocalize");

@@ -1,6 +1,6 @@
 // Whole FastSLAM runs on simulated worlds: bit-identical across thread counts, consistent on short horizons
 // (NEES over 30 seeds), far more accurate than dead reckoning; the result contract, and a failed rerun
-// leaves no result behind.
+// leaves no result behind; steps.csv marks the scans, and the time per scan counts the odometry between them.
 #include <algorithm>
 #include <filesystem>
 #include <numeric>
@@ -9,6 +9,7 @@
 
 #include "core/io/input_error.h"
 #include "core/io/trajectory_io.h"
+#include "core/metrics/run_statistics.h"
 #include "experiments/run/fastslam_run.h"
 #include "experiments/sim/simulator.h"
 #include "tests/engine/worlds.h"
@@ -96,6 +97,35 @@ TEST(FastSlamRun, ResultHoldsTheContractFields) {
     EXPECT_TRUE(out.result.contains(key)) << key;
   for (const char* key : {"filter", "map", "assoc", "particles", "seed", "threads", "commit", "host", "compiler"})
     EXPECT_TRUE(out.result["config"].contains(key)) << key;
+}
+
+// The time per scan adds the odometry-only steps since the previous scan to the scan's own step, and drops
+// the steps after the last scan: on a real log the time per step is mostly an odometry step's.
+TEST(FastSlamRun, PerScanTimesAddTheOdometryStepsBeforeEachScan) {
+  const auto step = [](double time_s, bool scan) { StepRecord r; r.step_time_s = time_s; r.scan = scan; return r; };
+  const std::vector<double> times =
+      per_scan_times({step(1.0, false), step(2.0, false), step(4.0, true), step(8.0, true), step(16.0, false)});
+  EXPECT_EQ(times, (std::vector<double>{7.0, 8.0}));
+  EXPECT_TRUE(per_scan_times({step(1.0, false)}).empty());
+}
+
+// A world with three odometry readings per scan: steps.csv marks the scans, and result.json times them.
+TEST(FastSlamRun, StepsCsvMarksScansAndTheResultTimesThem) {
+  RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 10, 1, 1);
+  c.out_dir = testing::scratch_dir("per_scan_time");
+  const Scenario scenario = testing::simulated_world(1, 20, 0.0, 3);
+  const RunOutput out = run_fastslam(scenario, c);
+  const auto scans = std::count_if(scenario.steps.begin(), scenario.steps.end(), [](const ScenarioStep& s) { return s.has_scan; });
+  ASSERT_GT(scenario.steps.size(), static_cast<std::size_t>(scans));
+  EXPECT_EQ(out.result["scans"].get<long>(), scans);
+  const std::vector<double> times = per_scan_times(out.steps);
+  EXPECT_EQ(out.result["scan_time_median_s"].get<double>(), quantile(times, 0.5));
+  EXPECT_EQ(out.result["scan_time_p90_s"].get<double>(), quantile(times, 0.9));
+  const std::string csv = testing::read_file(c.out_dir + "/steps.csv");
+  EXPECT_TRUE(csv.starts_with("step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees,relocalized,scan\n"));
+  long marked = 0;
+  for (std::size_t at = csv.find('\n'); (at = csv.find('\n', at + 1)) != std::string::npos;) marked += csv[at - 1] == '1';
+  EXPECT_EQ(marked, scans);
 }
 
 // Known association scored from its record like any strategy: it never pairs wrongly, and every measurement
