@@ -18,7 +18,8 @@ using testing_util::ScratchDir;
 
 constexpr const char* kPython = "/usr/bin/python3";
 const std::string kSource = ARBOR_SOURCE_DIR;
-// A report section runs on its own as a module of the package analysis/arbor_analysis.
+// The package analysis/arbor_analysis importable: a report section runs on its own as a module of it, and the
+// snippets below import it.
 const std::string kPythonPath = "PYTHONPATH=" + kSource + "/analysis";
 
 class AnalysisScripts : public ::testing::Test {
@@ -31,6 +32,16 @@ class AnalysisScripts : public ::testing::Test {
                    << "python3-matplotlib): " << read_text(probe / "probe.log");
   }
   std::string fixture() const { return kSource + "/tests/data/results_fixture"; }
+  // Runs a Python snippet with the package analysis/arbor_analysis importable, `ar` its results module and
+  // `df` the results under out (ar.load_results); *log is what it printed. A fatal failure if it fails: call
+  // it inside ASSERT_NO_FATAL_FAILURE.
+  static void run_on_results(const ScratchDir& out, const std::string& snippet, std::string* log) {
+    const std::string script = "from arbor_analysis import results as ar\n"
+                               "df = ar.load_results('" + out.str() + "')\n" + snippet;
+    const int status = run_to_end({"/usr/bin/env", kPythonPath, kPython, "-c", script}, out / "log.txt");
+    *log = read_text(out / "log.txt");
+    ASSERT_EQ(status, 0) << *log;
+  }
   // One clutter_study.sh run: OUT/runs/NAME/result.json with the fields analysis/studies/clutter.py reads.
   static void write_clutter_run(const ScratchDir& out, const std::string& name, double ate_aligned, int landmarks = 100,
                                 int spurious = 0, double wall_s = 1.0) {
@@ -103,14 +114,13 @@ TEST_F(AnalysisScripts, RunOptionsSeparateConfigurationsAndLabelsNameTheirDimens
       << R"("threads":1,"likelihood":"gaussian","scenario":"s","run_dir":"runs/a","clutter":2})" << "\n"
       << R"({"key":"b","status":"ok","filter":"fastslam2","map":"tree","assoc":"nn","particles":10,"seed":1,)"
       << R"("threads":1,"likelihood":"student-t","scenario":"s","run_dir":"runs/b","clutter":2})" << "\n";
-  const std::string script =
-      "import sys; sys.path.insert(0, '" + kSource + "/analysis'); from arbor_analysis import results as ar\n"
-      "df = ar.load_results('" + out.str() + "')\n"
+  std::string log;
+  ASSERT_NO_FATAL_FAILURE(run_on_results(
+      out,
       "print(ar.run_option_columns(df), sorted(df['likelihood']))\n"
       "for name, g in ar.lines_for(df.assign(x=[1, 2]), 'x', min_points=1): print(name)\n"
-      "print(ar.label(df.iloc[0], ['filter', 'assoc', 'clutter', 'particles']))\n";
-  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
-  const std::string log = read_text(out / "log.txt");
+      "print(ar.label(df.iloc[0], ['filter', 'assoc', 'clutter', 'particles']))\n",
+      &log));
   EXPECT_NE(log.find("['likelihood'] ['gaussian', 'student-t']"), std::string::npos) << log;
   EXPECT_NE(log.find("\nlikelihood = gaussian\n"), std::string::npos) << log;
   EXPECT_NE(log.find("\nlikelihood = student-t\n"), std::string::npos) << log;
@@ -228,13 +238,13 @@ TEST_F(AnalysisScripts, PairedComparisonsPairBySeedAndNeedThreePairs) {
       if (seed <= 2) f << row("nn", seed, 0.5 * seed + 0.3, 10) << row("jcbb", seed, 0.5 * seed, 10);
     }
   }
-  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "from arbor_analysis import results as ar, accuracy, paired\n"
-                             "df = ar.load_results('" + out.str() + "')\n"
-                             "for s in accuracy.make(df, '" + out.str() + "') + paired.make(df, '" + out.str() + "'):"
-                             " print(s.text)\n";
-  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
-  const std::string log = read_text(out / "log.txt");
+  std::string log;
+  ASSERT_NO_FATAL_FAILURE(run_on_results(
+      out,
+      "from arbor_analysis import accuracy, paired\n"
+      "for s in accuracy.make(df, '" + out.str() + "') + paired.make(df, '" + out.str() + "'):"
+      " print(s.text)\n",
+      &log));
   // 10 particles: two seeds, so the two values (0.5 and 1); 100 particles: four, so an interval.
   EXPECT_NE(log.find("| jcbb | 10 | 0.5 / 1 | 2 |"), std::string::npos) << log;
   EXPECT_NE(log.find("| jcbb | 100 | 1.25 ± 1 | 4 |"), std::string::npos) << log;
@@ -267,15 +277,15 @@ TEST_F(AnalysisScripts, DatasetSweepsGetAnAccuracyTableAgainstTheirReference) {
             << R"("source":"victoria-park","citation":"Guivant2001"}})";
       }
   }
-  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "from arbor_analysis import results as ar, dataset_accuracy\n"
-                             "df = ar.load_results('" + out.str() + "')\n"
-                             "for s in dataset_accuracy.make(df, '" + out.str() + "', '" + out.str() + "'):"
-                             " print('##', s.title); print(s.text)\n"
-                             "print('simulated:', dataset_accuracy.make(df.assign(dataset=None), '" + out.str() +
-                             "', '" + out.str() + "'))\n";
-  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
-  const std::string log = read_text(out / "log.txt");
+  std::string log;
+  ASSERT_NO_FATAL_FAILURE(run_on_results(
+      out,
+      "from arbor_analysis import dataset_accuracy\n"
+      "for s in dataset_accuracy.make(df, '" + out.str() + "', '" + out.str() + "'):"
+      " print('##', s.title); print(s.text)\n"
+      "print('simulated:', dataset_accuracy.make(df.assign(dataset=None), '" + out.str() +
+          "', '" + out.str() + "'))\n",
+      &log));
   EXPECT_NE(log.find("## Accuracy on park"), std::string::npos) << log;
   EXPECT_NE(log.find("reference trajectory gps_track; source victoria-park; citation Guivant2001; 1500 s of data"),
             std::string::npos) << log;
@@ -327,12 +337,12 @@ TEST_F(AnalysisScripts, FailureRateAndTailsAreComputedRightOnHandMadeRuns) {
               fastslam, 1, R"("ate_aligned_rmse_m":2.2,"dead_reckoning_ate_m":93.1,"rejected_measurements":0)");
   }
   // The report's section: one row per configuration over every scenario, the smoother as the reference.
-  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "from arbor_analysis import results as ar, failures\n"
-                             "df = ar.load_results('" + out.str() + "')\n"
-                             "for s in failures.make(df, '" + out.str() + "'): print('##', s.title); print(s.text)\n";
-  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
-  const std::string log = read_text(out / "log.txt");
+  std::string log;
+  ASSERT_NO_FATAL_FAILURE(run_on_results(
+      out,
+      "from arbor_analysis import failures\n"
+      "for s in failures.make(df, '" + out.str() + "'): print('##', s.title); print(s.text)\n",
+      &log));
   EXPECT_NE(log.find("## Failures and tails"), std::string::npos) << log;
   EXPECT_NE(log.find("| configuration | runs | failures | mean ATE (m) | median ATE (m) | p90 ATE (m) | median NEES | "
                      "consistency horizon (scan) | mean ATE ratio to smoother |"),
@@ -386,12 +396,12 @@ TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {
                 << (k == 3 ? 1 : 0) << "\n";
       }
   }
-  const std::string script = "import sys; sys.path.insert(0, '" + kSource + "/analysis')\n"
-                             "from arbor_analysis import results as ar, step_series\n"
-                             "df = ar.load_results('" + out.str() + "')\n"
-                             "for s in step_series.make(df, '" + out.str() + "', '" + out.str() + "'): print(s.text)\n";
-  ASSERT_EQ(run_to_end({kPython, "-c", script}, out / "log.txt"), 0) << read_text(out / "log.txt");
-  const std::string log = read_text(out / "log.txt");
+  std::string log;
+  ASSERT_NO_FATAL_FAILURE(run_on_results(
+      out,
+      "from arbor_analysis import step_series\n"
+      "for s in step_series.make(df, '" + out.str() + "', '" + out.str() + "'): print(s.text)\n",
+      &log));
   EXPECT_NE(log.find("| tree | 100 | 2.5 | 3.85 | 0.75 | 25 % |"), std::string::npos) << log;
   EXPECT_NE(log.find("| trie | 100 | 2.5 | 3.85 | 0.75 | 25 % |"), std::string::npos) << log;
   EXPECT_EQ(log.find("| 10 |"), std::string::npos) << "only the largest particle count: " << log;

@@ -13,6 +13,13 @@ namespace {
 
 using testing::run_command;
 
+// Runs command; expects its exit status, and text in what it printed.
+void expect_exit_and_output(const std::string& command, int exit_code, const std::string& text) {
+  const auto r = run_command(command);
+  EXPECT_EQ(r.exit_code, exit_code) << command << "\n" << r.output;
+  EXPECT_NE(r.output.find(text), std::string::npos) << command << "\n" << r.output;
+}
+
 TEST(Cli, SimulateThenRunSucceedsAndWritesTheFiles) {
   const std::string dir = testing::scratch_dir("cli_ok");
   const auto sim = run_command(testing::arbor_binary() + " simulate --landmarks 50 --steps 30 --out " + dir + "/w.scn");
@@ -30,17 +37,14 @@ TEST(Cli, MalformedScenarioExitsTwoNamingFileLineAndField) {
   const auto sed = run_command("sed -i '0,/^z [0-9.]*/s//z 1e999/' " + dir + "/w.scn && grep -n '^z 1e999' " + dir + "/w.scn");
   ASSERT_EQ(sed.exit_code, 0) << sed.output;
   const std::string line = sed.output.substr(0, sed.output.find(':'));
-  const auto run = run_command(testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out " + dir + "/r");
-  EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_NE(run.output.find(dir + "/w.scn:" + line + ": field 'range'"), std::string::npos) << run.output;
+  expect_exit_and_output(testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out " + dir + "/r", 2,
+                         dir + "/w.scn:" + line + ": field 'range'");
 }
 
 TEST(Cli, UnknownVariantAndMissingFileExitTwo) {
   const auto bad_map = run_command(testing::arbor_binary() + " run --scenario /nonexistent.scn --map nope --out /tmp/x");
   EXPECT_EQ(bad_map.exit_code, 2) << bad_map.output;
-  const auto missing = run_command(testing::arbor_binary() + " run --scenario /nonexistent.scn --out /tmp/x");
-  EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.output.find("/nonexistent.scn"), std::string::npos) << missing.output;
+  expect_exit_and_output(testing::arbor_binary() + " run --scenario /nonexistent.scn --out /tmp/x", 2, "/nonexistent.scn");
   const auto bad_option = run_command(testing::arbor_binary() + " simulate --landmarks -5 --out /tmp/x.scn");
   EXPECT_EQ(bad_option.exit_code, 2) << bad_option.output;
 }
@@ -68,17 +72,10 @@ TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) 
       {testing::arbor_binary() + " run --scenario " + dir + "/w.scn --quiet --out ''", "--out"},
       {testing::arbor_binary() + " simulate --out ''", "--out"},
   };
-  for (const auto& [command, option] : cases) {
-    const auto r = run_command(command);
-    EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.output;
-    EXPECT_NE(r.output.find(option), std::string::npos) << command << "\n" << r.output;
-  }
+  for (const auto& [command, option] : cases) expect_exit_and_output(command, 2, option);
   EXPECT_FALSE(std::ifstream(dir + "/r/result.json").good());
   // An option error has no file, and its message does not start with an empty one (": field ...").
-  const auto zero = run_command(run + "--particles 0");
-  EXPECT_EQ(zero.exit_code, 2) << zero.output;
-  EXPECT_NE(zero.output.find("arbor: error: field 'options': particles must be at least 1"), std::string::npos)
-      << zero.output;
+  expect_exit_and_output(run + "--particles 0", 2, "arbor: error: field 'options': particles must be at least 1");
   // Every form strtod reads stays accepted, hex floats included.
   const auto hex = run_command(run + "--particles 5 --prune 0x1p-2");
   EXPECT_EQ(hex.exit_code, 0) << hex.output;
@@ -91,18 +88,10 @@ TEST(Cli, EmptyNonFiniteNegativeOrImpossibleOptionValuesExitTwoNamingTheOption) 
 // with a tolerance of a millimetre.
 TEST(Cli, RelocalizeReportsTheCeilingAtTheTruePose) {
   const std::string reloc = testing::arbor_binary() + " relocalize --landmarks 200 --trials 10 --assoc locality --csv ";
-  const auto clean = run_command(reloc + "--clutter 0 --map-sigma 0.01");
-  ASSERT_EQ(clean.exit_code, 0) << clean.output;
-  EXPECT_NE(clean.output.find("\noracle,uniform,200,10,0,10,1.0000,0,0,0,1.0000,"), std::string::npos)
-      << clean.output;
-  const auto ambiguous = run_command(reloc + "--clutter 4 --map-sigma 0.3");
-  ASSERT_EQ(ambiguous.exit_code, 0) << ambiguous.output;
-  EXPECT_NE(ambiguous.output.find("\noracle,uniform,200,10,4,10,0.8000,0,0,0,1.0000,"), std::string::npos)
-      << ambiguous.output;
-  const auto strict = run_command(reloc + "--clutter 4 --map-sigma 0.3 --pose-tolerance-m 0.001");
-  ASSERT_EQ(strict.exit_code, 0) << strict.output;
-  EXPECT_NE(strict.output.find("\noracle,uniform,200,10,4,10,0.8000,0,0,0,0.0000,"), std::string::npos)
-      << strict.output;
+  expect_exit_and_output(reloc + "--clutter 0 --map-sigma 0.01", 0, "\noracle,uniform,200,10,0,10,1.0000,0,0,0,1.0000,");
+  expect_exit_and_output(reloc + "--clutter 4 --map-sigma 0.3", 0, "\noracle,uniform,200,10,4,10,0.8000,0,0,0,1.0000,");
+  expect_exit_and_output(reloc + "--clutter 4 --map-sigma 0.3 --pose-tolerance-m 0.001", 0,
+                         "\noracle,uniform,200,10,4,10,0.8000,0,0,0,0.0000,");
 }
 
 // steps.csv marks the scan where --relocalize re-seeded the particles, so a study can tell a recovery from a
@@ -135,9 +124,8 @@ TEST(Cli, StepsCsvMarksTheScanThatRelocalized) {
 
 // Exit 1, not 2, when the input is fine but the output cannot be written (/proc takes no new files).
 TEST(Cli, AnUnwritableOutputExitsOneNotTwo) {
-  const auto r = run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out /proc/arbor_cli_test.scn");
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("/proc/arbor_cli_test.scn"), std::string::npos) << r.output;
+  expect_exit_and_output(testing::arbor_binary() + " simulate --landmarks 20 --steps 5 --out /proc/arbor_cli_test.scn", 1,
+                         "/proc/arbor_cli_test.scn");
 }
 
 TEST(Cli, HelpExplainsEveryRunOption) {

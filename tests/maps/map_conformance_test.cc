@@ -61,6 +61,16 @@ Landmark random_landmark(LandmarkId id, std::mt19937_64& rng, Vec2 centre = Vec2
   return lm;
 }
 
+// Inserts landmarks 0 .. count - 1, drawn from rng, into map and the reference alike.
+template <class M>
+void insert_random(LandmarkId count, std::mt19937_64& rng, M* map, Reference* ref) {
+  for (LandmarkId id = 0; id < count; ++id) {
+    Landmark lm = random_landmark(id, rng);
+    map->insert(lm);
+    (*ref)[id] = lm;
+  }
+}
+
 template <class M>
 void expect_same(const M& map, const Reference& ref) {
   ASSERT_EQ(map.size(), ref.size());
@@ -153,11 +163,7 @@ TYPED_TEST(MapConformance, CopyIsUnaffectedByLaterChangesToItsSource) {
   std::mt19937_64 rng(7);
   TypeParam source;
   Reference ref;
-  for (LandmarkId id = 0; id < 500; ++id) {
-    Landmark lm = random_landmark(id, rng);
-    source.insert(lm);
-    ref[id] = lm;
-  }
+  insert_random(500, rng, &source, &ref);
   const TypeParam copy = source;
   for (LandmarkId id = 0; id < 500; id += 3) source.set(random_landmark(id, rng));
   for (LandmarkId id = 1; id < 500; id += 7) source.erase(id);
@@ -231,11 +237,7 @@ TYPED_TEST(MapConformance, ParallelUpdatesOfSharedMapsAreIndependentAndLeakFree)
     std::mt19937_64 rng(9);
     TypeParam parent;
     Reference ref;
-    for (LandmarkId id = 0; id < 2000; ++id) {
-      Landmark lm = random_landmark(id, rng);
-      parent.insert(lm);
-      ref[id] = lm;
-    }
+    insert_random(2000, rng, &parent, &ref);
     constexpr int kParticles = 64;
     std::vector<TypeParam> particles(kParticles, parent);
     tbb::parallel_for(0, kParticles, [&](int p) {

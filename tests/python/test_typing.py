@@ -29,24 +29,46 @@ def scenario():
 
 
 def test_the_committed_stub_is_what_the_descriptors_give():
-    assert STUB.read_text() == generator().render(), \
+    assert STUB.read_text() == generator().render(STUB.read_text()), \
         "python/arbor/__init__.pyi is stale: run PYTHONPATH=build/python scripts/generate_python_stub.py"
 
 
+def typed_dict_fields(declared, name):
+    """The keys of the stub's TypedDict `name`, its bases' first."""
+    node = declared[name]
+    inherited = [key for base in node.bases if isinstance(base, ast.Name) and base.id in declared
+                 for key in typed_dict_fields(declared, base.id)]
+    return inherited + [n.target.id for n in node.body if isinstance(n, ast.AnnAssign)]
+
+
+def stub_parameters(declared, node):
+    """A stub function's parameter names, **options: Unpack[_X] spelt out as _X's keys."""
+    names = [a.arg for a in node.args.args + node.args.kwonlyargs]
+    kwarg = node.args.kwarg
+    if kwarg is not None and isinstance(kwarg.annotation, ast.Subscript) and \
+            ast.unparse(kwarg.annotation.value) == "Unpack":
+        names += typed_dict_fields(declared, ast.unparse(kwarg.annotation.slice))
+    return names
+
+
 def test_the_stub_declares_the_package_as_it_is():
-    """The hand-written part of the stub (everything but the run options) against the package: every public
-    name, and each function's parameters."""
+    """The stub against the package: every public name, and each function's parameters (the run options'
+    TypedDicts spelt out). Private names (_Path, the TypedDicts) are the stub's own."""
     tree = ast.parse(STUB.read_text())
     declared = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
     for name in arbor.__all__:
         assert name in declared, f"the stub does not declare arbor.{name}"
     for name, node in declared.items():
+        if name.startswith("_"):
+            continue
         assert name in arbor.__all__, f"the stub declares {name}, which arbor does not export"
         if isinstance(node, ast.FunctionDef) and inspect.isfunction(getattr(arbor, name)):
-            stub = [a.arg for a in node.args.args + node.args.kwonlyargs]
+            stub = stub_parameters(declared, node)
             runtime = [p.name for p in inspect.signature(getattr(arbor, name)).parameters.values()
                        if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL)]
             assert stub == runtime, name
+    init = next(n for n in declared["Filter"].body if isinstance(n, ast.FunctionDef) and n.name == "__init__")
+    assert stub_parameters(declared, init) == list(inspect.signature(arbor.Filter.__init__).parameters)
     for cls in ["Filter", "Result", "Scenario"]:
         methods = {n.name for n in declared[cls].body
                    if isinstance(n, ast.FunctionDef) and not n.name.startswith("_")}

@@ -31,6 +31,21 @@ Scenario small_world() {
   return simulate(sim);
 }
 
+// A small FastSLAM run (20 particles, one thread) with this association of the small world written to
+// DIR/scenario.txt, its files in DIR/fastslam: the decisions a smoother is given. Returns the run's config.
+RunConfig small_fastslam_run(const std::string& dir, const std::string& assoc) {
+  write_scenario(small_world(), dir + "/scenario.txt");
+  RunConfig run;
+  run.assoc = assoc;
+  run.options.particles = 20;
+  run.options.threads = 1;
+  run.options.association.known_gate_probability = 1.0;  // no gate: with known association every measurement
+                                                         // with an id is paired, as the truth's
+  run.out_dir = dir + "/fastslam";
+  run_fastslam(read_scenario(dir + "/scenario.txt"), run);
+  return run;
+}
+
 TEST(SmoothRun, WritesResultFilesWithTheRunFieldsAndTheSolverFields) {
   const std::string dir = fresh_dir("files");
   write_scenario(small_world(), dir + "/scenario.txt");
@@ -83,15 +98,7 @@ TEST(SmoothRun, ReadsAssociationDecisions) {
 // build the same problem, so the same cost and the same trajectory.
 TEST(SmoothRun, AKnownAssociationRunsDecisionsAreTheTruthRenamed) {
   const std::string dir = fresh_dir("known_run");
-  write_scenario(small_world(), dir + "/scenario.txt");
-  const Scenario s = read_scenario(dir + "/scenario.txt");
-  RunConfig run;
-  run.assoc = "known";
-  run.options.particles = 20;
-  run.options.threads = 1;
-  run.options.association.known_gate_probability = 1.0;  // no gate: every measurement with an id is paired, as the truth's
-  run.out_dir = dir + "/fastslam";
-  run_fastslam(s, run);
+  const RunConfig run = small_fastslam_run(dir, "known");
 
   SmoothConfig config;
   config.scenario_path = dir + "/scenario.txt";
@@ -110,14 +117,8 @@ TEST(SmoothRun, AKnownAssociationRunsDecisionsAreTheTruthRenamed) {
 // or -1, and the smoother given them (starting, by default, from the run's trajectory) beats dead reckoning.
 TEST(SmoothRun, NearestNeighbourDecisionsCoverEveryMeasurementAndSolve) {
   const std::string dir = fresh_dir("nn_run");
-  write_scenario(small_world(), dir + "/scenario.txt");
+  const RunConfig run = small_fastslam_run(dir, "nn");
   const Scenario s = read_scenario(dir + "/scenario.txt");
-  RunConfig run;
-  run.assoc = "nn";
-  run.options.particles = 20;
-  run.options.threads = 1;
-  run.out_dir = dir + "/fastslam";
-  run_fastslam(s, run);
 
   const SmootherAssociations decisions = read_association_decisions(run.out_dir, s);
   std::size_t measurements = 0, rows = 0;
