@@ -318,10 +318,10 @@ void bind_run(py::module_& m) {
             py::array_t<bool> resampled(s.size()), scan(s.size());
             py::array_t<std::int64_t> landmarks(s.size()), hypotheses(s.size());
             for (std::size_t i = 0; i < s.size(); ++i) {
-              resampled.mutable_at(i) = s[i].resampled;
+              resampled.mutable_at(i) = s[i].stats.resampled;
               scan.mutable_at(i) = s[i].scan;
-              landmarks.mutable_at(i) = static_cast<std::int64_t>(s[i].landmarks);
-              hypotheses.mutable_at(i) = s[i].hypotheses;
+              landmarks.mutable_at(i) = static_cast<std::int64_t>(s[i].stats.best_landmarks);
+              hypotheses.mutable_at(i) = s[i].stats.hypotheses;
             }
             const auto column = [&](auto get) {
               return table(s.size(), 1, [&](std::size_t i, double* r) { r[0] = get(s[i]); }).reshape({s.size()});
@@ -329,7 +329,7 @@ void bind_run(py::module_& m) {
             py::dict d;
             d["time_s"] = column([](const StepRecord& r) { return r.time_s; });
             d["step_time_s"] = column([](const StepRecord& r) { return r.step_time_s; });
-            d["n_eff"] = column([](const StepRecord& r) { return r.n_eff; });
+            d["n_eff"] = column([](const StepRecord& r) { return r.stats.n_eff; });
             d["resampled"] = resampled;
             d["landmarks"] = landmarks;
             d["hypotheses"] = hypotheses;

@@ -46,6 +46,15 @@ struct NamesOf<GateCovariance> {
   static constexpr EnumNames<GateCovariance, 2> kTable{{{GateCovariance::kParticle, "particle"}, {GateCovariance::kSet, "set"}}};
 };
 
+// Landmarks near the edge of the sensor's view are association candidates (they may be seen), but only
+// landmarks well inside it are penalised when missed (core/engine/sensor_view.h).
+struct SensorViewMargins {
+  double candidate_range_m = 3.0;
+  double candidate_bearing_rad = 0.15;
+  double evidence_range_m = 1.0;
+  double evidence_bearing_rad = 0.05;
+};
+
 struct FastSlamOptions {
   FilterVersion version = FilterVersion::kFastSlam2;
   int particles = 100;
@@ -113,12 +122,7 @@ struct FastSlamOptions {
   // when the filter decides what exists.
   bool prune_with_known_association = false;
 
-  // Landmarks near the edge of the sensor's view are association candidates (they may be seen), but only
-  // landmarks well inside it are penalised when missed.
-  double candidate_range_margin_m = 3.0;
-  double candidate_bearing_margin_rad = 0.15;
-  double evidence_range_margin_m = 1.0;
-  double evidence_bearing_margin_rad = 0.05;
+  SensorViewMargins view_margins;
 
   // Relocalisation and loop closing (issue 12): at a scan where the best particle pairs under half of the
   // measurements, its settled map is searched without a prior (the locality tree, given to the engine by the

@@ -36,7 +36,7 @@ template <bool kGroundTruth>
 class ScanProblem {
  public:
   ScanProblem(const SensorModel& sensor, const FastSlamOptions& options)
-      : view_(sensor, options), R_(sensor.R()), signature_sigma_(sensor.sigma_signature) {}
+      : view_(sensor, options.view_margins), R_(sensor.R()), signature_sigma_(sensor.sigma_signature) {}
 
   const SensorView& view() const { return view_; }
 

@@ -25,37 +25,34 @@ inline ViewMargin uncertainty_margin(const Mat3& P) {
 
 class SensorView {
  public:
-  SensorView(const SensorModel& sensor, const FastSlamOptions& options)
-      : max_range_m_(sensor.max_range_m), min_range_m_(sensor.min_range_m), fov_rad_(sensor.fov_rad),
-        candidate_range_m_(options.candidate_range_margin_m), candidate_bearing_rad_(options.candidate_bearing_margin_rad),
-        evidence_range_m_(options.evidence_range_margin_m), evidence_bearing_rad_(options.evidence_bearing_margin_rad) {}
+  SensorView(const SensorModel& sensor, const SensorViewMargins& margins)
+      : max_range_m_(sensor.max_range_m), min_range_m_(sensor.min_range_m), fov_rad_(sensor.fov_rad), margins_(margins) {}
 
   // Where the sensor could see: the landmarks in this box are the association candidates.
   Box2 query_box(const Pose2& pose, double extra_reach_m = 0.0) const {
-    const double reach = max_range_m_ + candidate_range_m_ + extra_reach_m;
+    const double reach = max_range_m_ + margins_.candidate_range_m + extra_reach_m;
     return {pose.position() - Vec2(reach, reach), pose.position() + Vec2(reach, reach)};
   }
   // Whether a landmark predicted at z could be seen from a pose within margin of the particle's; the range
   // half alone, for a test before the bearing is computed.
   bool in_candidate_range(double range_m, const ViewMargin& margin) const {
-    return range_m <= max_range_m_ + candidate_range_m_ + margin.range_m;
+    return range_m <= max_range_m_ + margins_.candidate_range_m + margin.range_m;
   }
   bool in_candidate_view(const Vec2& z, const ViewMargin& margin) const {
     return in_candidate_range(z.x(), margin) &&
-           std::abs(z.y()) <= 0.5 * fov_rad_ + candidate_bearing_rad_ + margin.bearing_rad;
+           std::abs(z.y()) <= 0.5 * fov_rad_ + margins_.candidate_bearing_rad + margin.bearing_rad;
   }
   // Whether a landmark predicted at z lies well inside the view: unseen there, it was missed.
   bool in_evidence_range(double range_m) const {
-    return range_m <= max_range_m_ - evidence_range_m_ && range_m >= min_range_m_ + evidence_range_m_;
+    return range_m <= max_range_m_ - margins_.evidence_range_m && range_m >= min_range_m_ + margins_.evidence_range_m;
   }
   bool in_evidence_view(const Vec2& z) const {
-    return in_evidence_range(z.x()) && std::abs(z.y()) <= 0.5 * fov_rad_ - evidence_bearing_rad_;
+    return in_evidence_range(z.x()) && std::abs(z.y()) <= 0.5 * fov_rad_ - margins_.evidence_bearing_rad;
   }
 
  private:
   double max_range_m_, min_range_m_, fov_rad_;
-  double candidate_range_m_, candidate_bearing_rad_;
-  double evidence_range_m_, evidence_bearing_rad_;
+  SensorViewMargins margins_;
 };
 
 }  // namespace arbor

@@ -35,9 +35,9 @@ std::string steps_csv(const std::vector<StepRecord>& steps) {
   std::string out = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees,relocalized,scan\n";
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const StepRecord& s = steps[k];
-    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{},{},{}\n", k, s.time_s, s.step_time_s, s.n_eff,
-                   s.resampled ? 1 : 0, s.landmarks, s.hypotheses, s.nees ? fmt::format("{}", *s.nees) : "",
-                   s.relocalized ? 1 : 0, s.scan ? 1 : 0);
+    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{},{},{}\n", k, s.time_s, s.step_time_s,
+                   s.stats.n_eff, s.stats.resampled ? 1 : 0, s.stats.best_landmarks, s.stats.hypotheses,
+                   s.nees ? fmt::format("{}", *s.nees) : "", s.stats.relocalized ? 1 : 0, s.scan ? 1 : 0);
   }
   return out;
 }
@@ -109,9 +109,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     budget_exhausted += stats.budget_exhausted;
     moves_proposed += stats.moves_proposed;
     moves_accepted += stats.moves_accepted;
-    StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats.n_eff, stats.resampled,
-                                                           stats.best_landmarks, stats.hypotheses, std::nullopt,
-                                                           stats.relocalized, step.has_scan});
+    StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats, std::nullopt, step.has_scan});
     if (step.has_scan || step.truth_pose) {
       const PoseEstimate estimate = filter->estimate();
       mean_trajectory.push_back({step.time_s, estimate.mean});

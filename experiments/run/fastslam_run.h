@@ -1,7 +1,8 @@
 // One FastSLAM run from a scenario to its result files (DESIGN.md §9): DIR/result.json, DIR/trajectory.tum
 // (best particle), DIR/trajectory_mean.tum (weighted mean), DIR/map.csv (best particle's map),
-// DIR/associations.csv (best particle's decisions), DIR/steps.csv (per-step time, N_eff, landmarks, NEES, whether it held a scan) and,
-// where the scenario has a ground truth or GPS track, DIR/reference.tum (experiments/run/reference_trajectory.h).
+// DIR/associations.csv (best particle's decisions), DIR/steps.csv (per-step time, N_eff, landmarks, NEES,
+// whether it held a scan) and, where the scenario has a ground truth or GPS track, DIR/reference.tum
+// (experiments/run/reference_trajectory.h).
 #ifndef ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 #define ARBOR_EXPERIMENTS_RUN_FASTSLAM_RUN_H_
 
@@ -23,17 +24,13 @@
 
 namespace arbor {
 
-// One row of steps.csv.
+// One row of steps.csv: the step's time, the wall time it took, the filter's own account of it, its NEES.
 struct StepRecord {
   double time_s = 0.0;
   double step_time_s = 0.0;
-  double n_eff = 0.0;
-  bool resampled = false;
-  std::size_t landmarks = 0;       // in the best particle's map, provisional ones included
-  std::int64_t hypotheses = 0;
-  std::optional<double> nees;      // at steps with a truth pose
-  bool relocalized = false;        // every particle was re-seeded at a relocalised pose (--relocalize)
-  bool scan = false;               // the step carried a scan (real logs have many odometry-only steps)
+  StepStats stats;             // Filter::last_step_stats
+  std::optional<double> nees;  // at steps with a truth pose
+  bool scan = false;           // the step carried a scan (real logs have many odometry-only steps)
 };
 
 // Everything a run leaves: write_run_files turns it into the files of DESIGN.md §9.
