@@ -80,11 +80,9 @@ class FastSlam {
     step_noise_ = motion_.body_noise(step.control, step.time_s - last_time_s_);  // shared by every particle
     last_time_s_ = step.time_s;
     if (step_index_ > 0 && last_n_eff_ < options_.resample_threshold * options_.particles) resample();
-    const bool deferred = defers_prediction(step);
-    if (deferred)
-      pending_motion_.add(motion_, step.control, step_noise_);  // composed once for the set (composed_motion.h)
-    else
-      predict_and_correct(step);
+    const bool deferred = defers_prediction(step);  // then composed once for the set (composed_motion.h)
+    if (deferred) pending_motion_.add(motion_, step.control, step_noise_);
+    if (!deferred) predict_and_correct(step);
     // A deferred step leaves the weights as they were, unless it resampled (equal weights, N_eff = M).
     if (!deferred || stats_.resampled) last_n_eff_ = normalize_particle_weights(&particles_, &weights_, step_index_);
     stats_.n_eff = last_n_eff_;
@@ -141,9 +139,7 @@ class FastSlam {
  private:
   // Particle plus per-step counters the serial reduction reads.
   struct ParticleState : Particle<Map> {
-    std::int64_t step_hypotheses = 0;
-    std::int64_t step_tests = 0;
-    bool step_budget_exhausted = false;
+    AssociationStats step_search;  // this step's search (its rejected count is kept in Particle::rejected)
   };
 
   struct Scratch {
@@ -210,9 +206,9 @@ class FastSlam {
     roughening_kernel_.reset();
     pending_motion_.clear();
     for (const ParticleState& p : particles_) {
-      stats_.hypotheses += p.step_hypotheses;
-      stats_.tests += p.step_tests;
-      stats_.budget_exhausted += p.step_budget_exhausted;
+      stats_.hypotheses += p.step_search.hypotheses;
+      stats_.tests += p.step_search.tests;
+      stats_.budget_exhausted += p.step_search.budget_exhausted;
     }
   }
 
@@ -220,8 +216,7 @@ class FastSlam {
   // the control; then, at a scan, associate, propose and draw the pose, update and create landmarks, weight,
   // and keep the existence evidence. Between scans (per-scan sampling) only the prediction runs.
   void predict_particle(ParticleState& p, const ScenarioStep& step, int index) const {
-    p.step_hypotheses = p.step_tests = 0;
-    p.step_budget_exhausted = false;
+    p.step_search = {};
     pending_motion_.apply(&p.pose, &p.pose_covariance);
     if (roughening_kernel_) p.pose_covariance += *roughening_kernel_;
     motion_.predict(&p.pose, &p.pose_covariance, step.control, step_noise_);
@@ -391,9 +386,7 @@ class FastSlam {
     ARBOR_CHECK(s.result.pairing.size() == step.measurements.size(), "strategy {} returned {} decisions for {} measurements",
                 Assoc::kName, s.result.pairing.size(), step.measurements.size());
     s.decision = s.result.pairing;
-    p.step_hypotheses = s.result.stats.hypotheses;
-    p.step_tests = s.result.stats.tests;
-    p.step_budget_exhausted = s.result.stats.budget_exhausted;
+    p.step_search = s.result.stats;
     p.rejected += s.result.stats.rejected;
   }
 
