@@ -116,6 +116,7 @@ class FastSlam {
   }
 
   PoseEstimate estimate() const {
+    if (pending_motion_.empty()) return weighted_pose_estimate(particles_, weights_);  // no copies at a scan
     std::vector<PosePrediction> now(particles_.size());
     for (int i = 0; i < particle_count(); ++i) now[i] = predicted_pose(i);
     return weighted_pose_estimate(now, weights_);
