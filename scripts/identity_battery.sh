@@ -11,7 +11,8 @@ if [ "${1:-}" = --compare ]; then
   exec /usr/bin/python3 - "$2" "$3" <<'EOF'
 import json, os, sys
 a_dir, b_dir = sys.argv[1], sys.argv[2]
-TIMING = {"step_time_median_s", "step_time_p95_s", "wall_time_s", "peak_rss_bytes"}
+TIMING = {"step_time_median_s", "step_time_p95_s", "scan_time_median_s", "scan_time_p90_s", "wall_time_s",
+          "peak_rss_bytes"}
 PROVENANCE = {"commit", "host", "compiler", "build"}
 def norm(path):
     name = os.path.basename(path)
