@@ -34,22 +34,23 @@ constexpr bool value_named(const EnumNames<E, N>& table, std::string_view name, 
 }
 
 // An enum names its values by specialising this beside its declaration, so the names are read where the
-// enum is:  template <> struct NamesOf<WorldKind> { static constexpr EnumNames<WorldKind, 3> kTable{...}; };
+// enum is:  template <> inline constexpr EnumNames<WorldKind, 3> kNamesOf<WorldKind>{...};
+// The primary template, of another type, marks an enum without names.
 template <class E>
-struct NamesOf;
+inline constexpr std::nullptr_t kNamesOf = nullptr;
 
 template <class E>
-concept NamedEnum = std::is_enum_v<E> && requires { NamesOf<E>::kTable; };
+concept NamedEnum = std::is_enum_v<E> && !std::is_same_v<std::remove_cvref_t<decltype(kNamesOf<E>)>, std::nullptr_t>;
 
 // The value's name as scenario files and the command line spell it ("?" for a value the table lacks).
 template <NamedEnum E>
 constexpr std::string_view to_string(E value) {
-  return name_of(NamesOf<E>::kTable, value);
+  return name_of(kNamesOf<E>, value);
 }
 // Sets *value to the value with this name; false (and *value untouched) for an unknown name.
 template <NamedEnum E>
 constexpr bool from_string(std::string_view name, E* value) {
-  return value_named(NamesOf<E>::kTable, name, value);
+  return value_named(kNamesOf<E>, name, value);
 }
 
 }  // namespace arbor

@@ -28,23 +28,17 @@ enum class GateCovariance { kParticle, kSet };
 
 // The command-line names of each option's values (core/enum_names.h).
 template <>
-struct NamesOf<FilterVersion> {
-  static constexpr EnumNames<FilterVersion, 3> kTable{
-      {{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}, {FilterVersion::kEkf, "ekf"}}};
-};
+inline constexpr EnumNames<FilterVersion, 3> kNamesOf<FilterVersion>{
+    {{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}, {FilterVersion::kEkf, "ekf"}}};
 template <>
-struct NamesOf<MotionSampling> {
-  static constexpr EnumNames<MotionSampling, 2> kTable{
-      {{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
-};
+inline constexpr EnumNames<MotionSampling, 2> kNamesOf<MotionSampling>{
+    {{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
 template <>
-struct NamesOf<Likelihood> {
-  static constexpr EnumNames<Likelihood, 2> kTable{{{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
-};
+inline constexpr EnumNames<Likelihood, 2> kNamesOf<Likelihood>{
+    {{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
 template <>
-struct NamesOf<GateCovariance> {
-  static constexpr EnumNames<GateCovariance, 2> kTable{{{GateCovariance::kParticle, "particle"}, {GateCovariance::kSet, "set"}}};
-};
+inline constexpr EnumNames<GateCovariance, 2> kNamesOf<GateCovariance>{
+    {{GateCovariance::kParticle, "particle"}, {GateCovariance::kSet, "set"}}};
 
 // Landmarks near the edge of the sensor's view are association candidates (they may be seen), but only
 // landmarks well inside it are penalised when missed (core/engine/sensor_view.h).

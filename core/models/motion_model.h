@@ -17,11 +17,9 @@ enum class MotionModelKind { kOdometry, kVelocity, kAckermann };
 
 // As scenario files and the command line name them (core/enum_names.h).
 template <>
-struct NamesOf<MotionModelKind> {
-  static constexpr EnumNames<MotionModelKind, 3> kTable{{{MotionModelKind::kOdometry, "odometry"},
-                                                        {MotionModelKind::kVelocity, "velocity"},
-                                                        {MotionModelKind::kAckermann, "ackermann"}}};
-};
+inline constexpr EnumNames<MotionModelKind, 3> kNamesOf<MotionModelKind>{{{MotionModelKind::kOdometry, "odometry"},
+                                                      {MotionModelKind::kVelocity, "velocity"},
+                                                      {MotionModelKind::kAckermann, "ackermann"}}};
 
 struct MotionModel {
   MotionModelKind kind = MotionModelKind::kOdometry;

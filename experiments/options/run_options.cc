@@ -71,7 +71,7 @@ RunOptionDescriptor choice_option(std::string name, Field field, std::string hel
   using Enum = std::remove_reference_t<decltype(field(std::declval<RunConfig&>()))>;
   std::vector<std::string> names = allowed;
   if (names.empty())
-    for (const auto& [value, n] : NamesOf<Enum>::kTable) names.emplace_back(n);
+    for (const auto& [value, n] : kNamesOf<Enum>) names.emplace_back(n);
   return {name,
           [=](CLI::App& cmd, RunConfig& c, RunChoices& choices) {
             std::string& chosen = choices.chosen[name] = std::string(to_string(field(c)));

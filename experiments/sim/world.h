@@ -15,10 +15,8 @@ namespace arbor {
 
 enum class WorldKind { kUniform, kClustered, kRooms };
 template <>
-struct NamesOf<WorldKind> {
-  static constexpr EnumNames<WorldKind, 3> kTable{
-      {{WorldKind::kUniform, "uniform"}, {WorldKind::kClustered, "clustered"}, {WorldKind::kRooms, "rooms"}}};
-};
+inline constexpr EnumNames<WorldKind, 3> kNamesOf<WorldKind>{
+    {{WorldKind::kUniform, "uniform"}, {WorldKind::kClustered, "clustered"}, {WorldKind::kRooms, "rooms"}}};
 
 struct WorldOptions {
   WorldKind kind = WorldKind::kUniform;

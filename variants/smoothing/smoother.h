@@ -23,16 +23,12 @@ enum class SmootherLinearSolver { kSparseSchur, kSparseNormalCholesky };
 
 // The CLI's names (core/enum_names.h).
 template <>
-struct NamesOf<SmootherLoss> {
-  static constexpr EnumNames<SmootherLoss, 3> kTable{
-      {{SmootherLoss::kNone, "none"}, {SmootherLoss::kHuber, "huber"}, {SmootherLoss::kCauchy, "cauchy"}}};
-};
+inline constexpr EnumNames<SmootherLoss, 3> kNamesOf<SmootherLoss>{
+    {{SmootherLoss::kNone, "none"}, {SmootherLoss::kHuber, "huber"}, {SmootherLoss::kCauchy, "cauchy"}}};
 template <>
-struct NamesOf<SmootherLinearSolver> {
-  static constexpr EnumNames<SmootherLinearSolver, 2> kTable{
-      {{SmootherLinearSolver::kSparseSchur, "sparse-schur"},
-       {SmootherLinearSolver::kSparseNormalCholesky, "sparse-normal-cholesky"}}};
-};
+inline constexpr EnumNames<SmootherLinearSolver, 2> kNamesOf<SmootherLinearSolver>{
+    {{SmootherLinearSolver::kSparseSchur, "sparse-schur"},
+     {SmootherLinearSolver::kSparseNormalCholesky, "sparse-normal-cholesky"}}};
 
 struct SmootherOptions {
   // Poses: one per scan (and the last step), with the controls between composed into one motion factor.
