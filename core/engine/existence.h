@@ -52,6 +52,7 @@ class ExistenceEvidence {
                    std::int32_t scan_index, const SensorView& view, const LoopClosingScan* loops, Map* map,
                    std::vector<LandmarkId>* erased) const {
     erased->clear();
+    const BearingBound bearing_bound(pose, view.evidence_cos_bound());
     for (const Landmark& lm : nearby) {
       if (touches(touched, lm.id)) continue;
       const auto drop = [&] {
@@ -69,7 +70,9 @@ class ExistenceEvidence {
         drop();
         continue;
       }
-      if (!view.in_evidence_range(predicted_range(pose, lm.mean))) continue;  // most of the box: no atan2
+      const double range_m = predicted_range(pose, lm.mean);
+      if (!view.in_evidence_range(range_m)) continue;  // most of the box: no atan2
+      if (bearing_bound.certainly_beyond(lm.mean, range_m)) continue;  // behind the sensor: no atan2 either
       if (!view.in_evidence_view(range_bearing_predict(pose, lm.mean))) continue;
       Landmark updated = lm;
       updated.log_odds = static_cast<float>(lm.log_odds - miss_);

@@ -82,6 +82,7 @@ class ScanProblem {
     const ViewMargin margin = uncertainty_margin(P);
     gather_nearby(map, pose, margin.range_m, nearby);
     begin(P, s);
+    const BearingBound bearing_bound(pose, view_.candidate_cos_bound(margin));
     for (const Landmark& lm : *nearby) {
       // What cannot be a candidate is passed over before its prediction and innovation covariance are paid for
       // (a third of the step at 1000 particles went to candidates never read): the oracle reads only those its
@@ -90,8 +91,10 @@ class ScanProblem {
       if constexpr (kGroundTruth)
         if (!std::binary_search(scan_ids_.begin(), scan_ids_.end(), lm.truth_label)) continue;
       if (beyond_candidate_range(lm, pose, margin)) continue;
-      const AssociationCandidate c = candidate(lm, pose, spread);
-      if (is_candidate(c.z_hat, margin)) s->problem.candidates.push_back(c);
+      if (!kGroundTruth && bearing_bound.certainly_beyond(lm.mean, predicted_range(pose, lm.mean))) continue;
+      // The prediction decides the view first; the Jacobians, S and the copy are paid only for a candidate.
+      const Vec2 z_hat = range_bearing_predict(pose, lm.mean);
+      if (is_candidate(z_hat, margin)) s->problem.candidates.push_back(candidate(lm, pose, z_hat, spread));
     }
   }
 
@@ -113,9 +116,14 @@ class ScanProblem {
 
   // Landmark lm as an association candidate seen from pose, its gate widened by the set's spread (if any).
   AssociationCandidate candidate(const Landmark& lm, const Pose2& pose, const SetSpread* spread) const {
+    return candidate(lm, pose, range_bearing_predict(pose, lm.mean), spread);
+  }
+  // The same, given z_hat = range_bearing_predict(pose, lm.mean).
+  AssociationCandidate candidate(const Landmark& lm, const Pose2& pose, const Vec2& z_hat, const SetSpread* spread) const {
     AssociationCandidate c;
     Mat2 H_m;
-    c.z_hat = range_bearing_predict(pose, lm.mean, &H_m, &c.H_pose);
+    c.z_hat = z_hat;
+    range_bearing_jacobians(pose, lm.mean, &H_m, &c.H_pose);
     c.id = lm.id;
     if constexpr (kGroundTruth) c.truth_label = lm.truth_label;
     c.S = H_m * lm.cov * H_m.transpose() + R_;

@@ -24,12 +24,21 @@ inline double predicted_range(const Pose2& x, const Vec2& m) {
   return std::sqrt(std::max(dx * dx + dy * dy, kMinSquaredRange));
 }
 
-inline Vec2 range_bearing_predict(const Pose2& x, const Vec2& m, Mat2* J_z_lm = nullptr, Mat23* J_z_pose = nullptr) {
+// The Jacobians alone, to the bit what range_bearing_predict gives: a caller that has the prediction (and has
+// kept the landmark in view by it) pays only for these.
+inline void range_bearing_jacobians(const Pose2& x, const Vec2& m, Mat2* J_z_lm, Mat23* J_z_pose) {
   const double dx = m.x() - x.x, dy = m.y() - x.y;
   const double q = std::max(dx * dx + dy * dy, kMinSquaredRange);
   const double r = std::sqrt(q);
   if (J_z_lm) *J_z_lm << dx / r, dy / r, -dy / q, dx / q;
   if (J_z_pose) *J_z_pose << -dx / r, -dy / r, 0, dy / q, -dx / q, -1;
+}
+
+inline Vec2 range_bearing_predict(const Pose2& x, const Vec2& m, Mat2* J_z_lm = nullptr, Mat23* J_z_pose = nullptr) {
+  const double dx = m.x() - x.x, dy = m.y() - x.y;
+  const double q = std::max(dx * dx + dy * dy, kMinSquaredRange);
+  const double r = std::sqrt(q);
+  range_bearing_jacobians(x, m, J_z_lm, J_z_pose);
   return {r, wrap_angle(std::atan2(dy, dx) - x.theta)};
 }
 
