@@ -1,15 +1,20 @@
 // JCBB: joint compatibility of every answer, equality with NN where the problem is unambiguous, the
 // ambiguous case NN gets wrong, order invariance and the search budget.
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <numeric>
 #include <random>
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include "core/math/chi_square.h"
 #include "tests/association/test_problems.h"
 #include "variants/association/association_common.h"
 #include "variants/association/jcbb.h"
+#include "variants/association/joint_information.h"
 #include "variants/association/joint_compatibility.h"
 #include "variants/association/nearest_neighbor.h"
 #include "variants/association/problem_generator.h"
@@ -19,6 +24,45 @@ namespace {
 
 int pairings(const AssociationResult& r) {
   return static_cast<int>(std::count_if(r.pairing.begin(), r.pairing.end(), [](LandmarkId id) { return id >= 0; }));
+}
+
+// The information form's 3x3 solve must give Eigen's PartialPivLU answer to the bit, or JCBB's distances,
+// and with them its tie-breaks and every run's output, would change: random systems of the form the distance
+// solves (I + P J), general ones that need row swaps at both steps, and ones with a zero column.
+TEST(Jcbb, ThreeByThreeSolveIsEigensPartialPivotLuToTheBit) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_int_distribution<int> kind(0, 3);
+  int swapped = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    Mat3 A;
+    for (int i = 0; i < 9; ++i) A(i) = normal(rng) * std::pow(10.0, normal(rng));
+    switch (kind(rng)) {
+      case 0: {  // the distance's own form
+        Mat3 G, H;
+        for (int i = 0; i < 9; ++i) G(i) = normal(rng), H(i) = normal(rng);
+        A = Mat3::Identity() + (G * G.transpose()) * (H * H.transpose());
+        break;
+      }
+      case 1: A.col(trial % 3).setZero(); break;
+      case 2: A.row(0) *= 1e-3; break;  // the first pivot comes from below
+      default: break;
+    }
+    const Vec3 y(normal(rng), normal(rng), normal(rng));
+    const Eigen::PartialPivLU<Mat3> lu(A);
+    swapped += lu.permutationP().indices() != Eigen::Vector3i(0, 1, 2);
+    const Vec3 expected = lu.solve(y);
+    const Vec3 got = association::solve3_partial_pivot(A, y);
+    for (int i = 0; i < 3; ++i) {
+      if (std::isnan(expected(i))) {
+        ASSERT_TRUE(std::isnan(got(i))) << "trial " << trial;
+      } else {
+        ASSERT_EQ(std::memcmp(&expected(i), &got(i), sizeof(double)), 0)
+            << "trial " << trial << " component " << i << ": " << expected(i) << " vs " << got(i);
+      }
+    }
+  }
+  EXPECT_GT(swapped, 50000);  // the pivoting paths ran
 }
 
 TEST(Jcbb, NeverReturnsAJointlyIncompatibleHypothesis) {
