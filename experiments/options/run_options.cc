@@ -31,7 +31,7 @@ struct RunOptionDescriptor {
   std::function<Json(const RunConfig&)> record;
   std::function<void(const RunChoices&, RunConfig&)> apply;
   bool is_flag = false;  // a switch: --name alone, or --name=true|false
-  std::vector<std::string> choices;  // the names a named value accepts; empty: any value of its type
+  std::vector<std::string> choices = {};  // the names a named value accepts; empty: any value of its type
   // The filter trait the option needs (variants/filter_list.h), or none: with a filter that lacks it the
   // option is an error when given and null in result.json (EKF-SLAM has no --particles, no --map).
   bool FilterTraits::*needs = nullptr;
