@@ -120,7 +120,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
         record.nees = nees;
       }
     }
-    progress.update(static_cast<std::int64_t>(k + 1), fmt::format("{} landmarks", stats.best_landmarks));
+    progress.update(static_cast<std::int64_t>(k + 1), [&] { return fmt::format("{} landmarks", stats.best_landmarks); });
     if (config.after_step) config.after_step();
   }
   progress.finish();

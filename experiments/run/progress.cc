@@ -12,17 +12,19 @@ namespace arbor {
 
 ProgressLine::ProgressLine(bool enabled) : enabled_(enabled), terminal_(::isatty(STDERR_FILENO) != 0) {}
 
+bool ProgressLine::due(double fraction) const {
+  if (!enabled_) return false;
+  if (!shown_) return true;
+  const auto since = std::chrono::steady_clock::now() - last_;
+  if (terminal_) return since >= std::chrono::milliseconds(500);
+  return static_cast<int>(std::floor(10.0 * fraction)) != last_tenth_ || since >= std::chrono::seconds(10);
+}
+
 void ProgressLine::show(const std::string& text, double fraction, bool last) {
-  if (!enabled_) return;
-  const auto now = std::chrono::steady_clock::now();
-  const int tenth = static_cast<int>(std::floor(10.0 * fraction));
-  if (!last && shown_) {
-    if (terminal_ && now - last_ < std::chrono::milliseconds(500)) return;
-    if (!terminal_ && tenth == last_tenth_ && now - last_ < std::chrono::seconds(10)) return;
-  }
+  if (!enabled_ || (!last && !due(fraction))) return;
   shown_ = true;
-  last_ = now;
-  last_tenth_ = tenth;
+  last_ = std::chrono::steady_clock::now();
+  last_tenth_ = static_cast<int>(std::floor(10.0 * fraction));
   if (terminal_) fmt::print(stderr, "\r{}\033[K{}", text, last ? "\n" : "");
   else fmt::print(stderr, "{}\n", text);
   std::fflush(stderr);
@@ -32,8 +34,7 @@ Progress::Progress(std::string label, std::int64_t total, bool enabled)
     : label_(std::move(label)), total_(total), enabled_(enabled && total > 0),
       start_(std::chrono::steady_clock::now()), line_(enabled_) {}
 
-void Progress::update(std::int64_t done, const std::string& extra) {
-  if (!enabled_) return;
+void Progress::show(std::int64_t done, const std::string& extra) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double left = done > 0 ? elapsed * (total_ - done) / done : 0.0;
   line_.show(fmt::format("{}: {}/{} ({:.0f}%) elapsed {:.1f}s, ~{:.1f}s left{}{}", label_, done, total_,

@@ -17,6 +17,8 @@ class ProgressLine {
   explicit ProgressLine(bool enabled = true);
   // fraction: how much of the work is done, in [0, 1]; last: the final line.
   void show(const std::string& text, double fraction, bool last);
+  // Whether show(..., fraction, false) would write now: a caller can skip composing a line nobody sees.
+  bool due(double fraction) const;
 
  private:
   bool enabled_, terminal_;
@@ -29,10 +31,20 @@ class ProgressLine {
 class Progress {
  public:
   Progress(std::string label, std::int64_t total, bool enabled);
-  void update(std::int64_t done, const std::string& extra = "");
+  // extra: a callable giving the line's tail, called only when the line is due (a filter's loop calls
+  // update at every step, and composing lines that the policy drops cost more than some steps).
+  template <class Extra>
+  void update(std::int64_t done, const Extra& extra) {
+    if (enabled_ && line_.due(static_cast<double>(done) / total_)) show(done, extra());
+  }
+  void update(std::int64_t done) {
+    update(done, [] { return std::string(); });
+  }
   void finish(const std::string& extra = "");
 
  private:
+  void show(std::int64_t done, const std::string& extra);
+
   std::string label_;
   std::int64_t total_;
   bool enabled_;
