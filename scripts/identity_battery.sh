@@ -138,6 +138,14 @@ run all_on_moves scn/multirate.scn --move-window 4 --gate-covariance set --pose-
   || { echo "convert mrclam failed"; fail=1; }
 run mrclam_known scn/mrclam1.scn --assoc known --threads 2 --particles 50 --seed 1
 run mrclam_nn_moves scn/mrclam1.scn --assoc nn --move-window 4 --gate-covariance set --threads 2 --particles 50 --seed 1
+# Truth only at scans, as a real log with gaps in its ground truth has it (MRCLAM robot 4's Vicon dropouts): the
+# controls between scans are then composed once for the set (core/models/composed_motion.h), a path no other run
+# here takes. Without it the battery passed e8e1d3d, which changed robot 4's results.
+awk '/^step /{if (block != "") printf "%s", (scan ? block : nontruth); block = ""; nontruth = ""; scan = 0}
+     {block = block $0 "\n"; if ($1 != "truth") nontruth = nontruth $0 "\n"; if ($1 == "scan") scan = 1}
+     END{printf "%s", (scan ? block : nontruth)}' scn/multirate.scn > scn/multirate_truth_at_scans.scn
+run gaps_known scn/multirate_truth_at_scans.scn --assoc known --map trie --threads 2 $P
+run gaps_jcbb scn/multirate_truth_at_scans.scn --assoc jcbb --map tree --threads 2 $P
 
 echo "battery done: $(ls runs | wc -l) runs, fail=$fail"
 exit $fail
