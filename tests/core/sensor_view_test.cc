@@ -66,10 +66,18 @@ TEST(BearingBound, NeverRulesOutALandmarkTheViewKeepsAndRulesOutThoseClearlyBehi
     const int evidence_out = check_bearing_bound(view.evidence_cos_bound(), evidence_limit,
                                                  [&](const Vec2& z) { return view.in_evidence_view(z); }, &rng);
     // Past a full turn nothing may be ruled out; below one, the random landmarks behind the sensor are.
-    if (candidate_limit >= kPi) EXPECT_EQ(candidates_out, 0) << "fov " << fov;
-    if (candidate_limit + 0.1 < kPi) EXPECT_GT(candidates_out, 0) << "fov " << fov;
-    if (evidence_limit >= kPi) EXPECT_EQ(evidence_out, 0) << "fov " << fov;
-    if (evidence_limit + 0.1 < kPi) EXPECT_GT(evidence_out, 0) << "fov " << fov;
+    if (candidate_limit >= kPi) {
+      EXPECT_EQ(candidates_out, 0) << "fov " << fov;
+    }
+    if (candidate_limit + 0.1 < kPi) {
+      EXPECT_GT(candidates_out, 0) << "fov " << fov;
+    }
+    if (evidence_limit >= kPi) {
+      EXPECT_EQ(evidence_out, 0) << "fov " << fov;
+    }
+    if (evidence_limit + 0.1 < kPi) {
+      EXPECT_GT(evidence_out, 0) << "fov " << fov;
+    }
   }
 }
 
