@@ -82,7 +82,7 @@ class FastSlam {
     if (step_index_ > 0 && last_n_eff_ < options_.resample_threshold * options_.particles) resample();
     const bool deferred = defers_prediction(step);  // then composed once for the set (composed_motion.h)
     if (deferred) pending_motion_.add(motion_, step.control, step_noise_);
-    if (!deferred) predict_and_correct(step);
+    else predict_and_correct(step);
     // A deferred step leaves the weights as they were, unless it resampled (equal weights, N_eff = M).
     if (!deferred || stats_.resampled) last_n_eff_ = normalize_particle_weights(&particles_, &weights_, step_index_);
     stats_.n_eff = last_n_eff_;

@@ -82,7 +82,7 @@ class ScanProblem {
     const ViewMargin margin = uncertainty_margin(P);
     gather_nearby(map, pose, margin.range_m, nearby);
     begin(P, s);
-    const BearingBound bearing_bound(pose, view_.candidate_cos_bound(margin));
+    const BearingBound bound = bearing_bound(pose, margin);
     for (const Landmark& lm : *nearby) {
       // What cannot be a candidate is passed over before its prediction and innovation covariance are paid for
       // (a third of the step at 1000 particles went to candidates never read): the oracle reads only those its
@@ -90,8 +90,7 @@ class ScanProblem {
       // kept are the same, in the same order, computed the same way.
       if constexpr (kGroundTruth)
         if (!std::binary_search(scan_ids_.begin(), scan_ids_.end(), lm.truth_label)) continue;
-      if (beyond_candidate_range(lm, pose, margin)) continue;
-      if (!kGroundTruth && bearing_bound.certainly_beyond(lm.mean, predicted_range(pose, lm.mean))) continue;
+      if (certainly_not_candidate(lm, pose, margin, bound)) continue;
       // The prediction decides the view first; the Jacobians, S and the copy are paid only for a candidate.
       const Vec2 z_hat = range_bearing_predict(pose, lm.mean);
       if (is_candidate(z_hat, margin)) s->problem.candidates.push_back(candidate(lm, pose, z_hat, spread));
@@ -106,8 +105,9 @@ class ScanProblem {
     const ViewMargin margin = uncertainty_margin(P);
     gather_nearby(map, pose, margin.range_m, nearby);
     out->clear();
+    const BearingBound bound = bearing_bound(pose, margin);
     for (const Landmark& lm : *nearby) {
-      if (beyond_candidate_range(lm, pose, margin)) continue;
+      if (certainly_not_candidate(lm, pose, margin, bound)) continue;
       const Vec2 z_hat = range_bearing_predict(pose, lm.mean);
       if (is_candidate(z_hat, margin)) out->push_back({lm.id, z_hat});
     }
@@ -119,7 +119,8 @@ class ScanProblem {
     return candidate(lm, pose, range_bearing_predict(pose, lm.mean), spread);
   }
   // The same, given z_hat = range_bearing_predict(pose, lm.mean).
-  AssociationCandidate candidate(const Landmark& lm, const Pose2& pose, const Vec2& z_hat, const SetSpread* spread) const {
+  AssociationCandidate candidate(const Landmark& lm, const Pose2& pose, const Vec2& z_hat,
+                                 const SetSpread* spread) const {
     AssociationCandidate c;
     Mat2 H_m;
     c.z_hat = z_hat;
@@ -145,10 +146,18 @@ class ScanProblem {
   }
 
   bool is_candidate(const Vec2& z, const ViewMargin& margin) const { return kGroundTruth || view_.in_candidate_view(z, margin); }
-  // is_candidate's verdict where the range alone settles it, before the bearing's atan2 is paid for:
-  // predicted_range is to the bit the range range_bearing_predict gives.
-  bool beyond_candidate_range(const Landmark& lm, const Pose2& pose, const ViewMargin& margin) const {
-    return !kGroundTruth && !view_.in_candidate_range(predicted_range(pose, lm.mean), margin);
+  // is_candidate's verdict where the range or the bearing's cosine settles it, before the bearing's atan2 is
+  // paid for: predicted_range is to the bit the range range_bearing_predict gives, and BearingBound rules out
+  // only what the view's own test would. The oracle keeps every landmark, so it builds no bound.
+  BearingBound bearing_bound(const Pose2& pose, const ViewMargin& margin) const {
+    if constexpr (kGroundTruth) return BearingBound{};
+    else return BearingBound(pose, view_.candidate_cos_bound(margin));
+  }
+  bool certainly_not_candidate(const Landmark& lm, const Pose2& pose, const ViewMargin& margin,
+                               const BearingBound& bound) const {
+    if constexpr (kGroundTruth) return false;
+    const double range_m = predicted_range(pose, lm.mean);
+    return !view_.in_candidate_range(range_m, margin) || bound.certainly_beyond(lm.mean, range_m);
   }
 
   SensorView view_;

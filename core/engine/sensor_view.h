@@ -62,14 +62,16 @@ class SensorView {
   // cosine at most 1) bounds it without a cosine per particle.
   double candidate_cos_bound(const ViewMargin& margin) const {
     const double b = margin.bearing_rad;
-    if (candidate_base_rad_ + b >= kPi) return -std::numeric_limits<double>::infinity();
-    return cos_candidate_base_ - b * sin_candidate_base_ - 0.5 * b * b - 1e-9;
+    if (candidate_base_rad_ + b >= kPi) return kNoBound;
+    return cos_candidate_base_ - b * sin_candidate_base_ - 0.5 * b * b - kCosineMargin;
   }
   double evidence_cos_bound() const { return evidence_cos_bound_; }
 
  private:
+  static constexpr double kCosineMargin = 1e-9;
+  static constexpr double kNoBound = -std::numeric_limits<double>::infinity();
   static double cosine_bound(double limit_rad) {
-    return limit_rad >= kPi ? -std::numeric_limits<double>::infinity() : std::cos(limit_rad) - 1e-9;
+    return limit_rad >= kPi ? kNoBound : std::cos(limit_rad) - kCosineMargin;
   }
 
   double max_range_m_, min_range_m_, fov_rad_;
@@ -82,11 +84,13 @@ class SensorView {
 // beyond a view's limit L, |phi| > L, decided on its cosine: cos phi = (R(theta)^T (m - p))_x / r < cos_bound,
 // with cos_bound below cos L by a margin (SensorView::*_cos_bound) some million times what the rounding of
 // this test and of atan2 can move. A landmark it rules out is one the view's own test would rule out too, so
-// what a scan pairs and what its evidence counts stay bit-identical.
+// what a scan pairs and what its evidence counts stay bit-identical. Default-constructed, it rules out nothing.
 class BearingBound {
  public:
+  BearingBound() = default;
   BearingBound(const Pose2& pose, double cos_bound)
-      : x_(pose.x), y_(pose.y), cos_theta_(std::cos(pose.theta)), sin_theta_(std::sin(pose.theta)), cos_bound_(cos_bound) {}
+      : x_(pose.x), y_(pose.y), cos_theta_(std::cos(pose.theta)), sin_theta_(std::sin(pose.theta)),
+        cos_bound_(cos_bound) {}
 
   // range_m: predicted_range(pose, m).
   bool certainly_beyond(const Vec2& m, double range_m) const {
@@ -94,7 +98,8 @@ class BearingBound {
   }
 
  private:
-  double x_, y_, cos_theta_, sin_theta_, cos_bound_;
+  double x_ = 0.0, y_ = 0.0, cos_theta_ = 1.0, sin_theta_ = 0.0;
+  double cos_bound_ = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace arbor

@@ -37,9 +37,6 @@ class Progress {
   void update(std::int64_t done, const Extra& extra) {
     if (enabled_ && line_.due(static_cast<double>(done) / total_)) show(done, extra());
   }
-  void update(std::int64_t done) {
-    update(done, [] { return std::string(); });
-  }
   void finish(const std::string& extra = "");
 
  private:
