@@ -82,7 +82,7 @@ class EkfSlam {
   void scan(const ScenarioStep& step) {
     if (step.measurements.empty()) {
       apply_negative_evidence({});
-      if (!erased_.empty()) decisions_.push({step_index_, {}, erased_});
+      if (!erased_.empty()) decisions_.push(applied_removals(step_index_, erased_));
       return;
     }
     const Pose2 pose = state_.pose();

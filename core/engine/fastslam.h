@@ -236,7 +236,7 @@ class FastSlam {
       if (step.has_scan) {
         scan_.gather_nearby(p.map, p.pose, 0.0, &s.nearby);
         apply_negative_evidence(p, s, /*touched=*/{});
-        if (!s.erased.empty()) p.decisions.push({step_index_, {}, s.erased});
+        if (!s.erased.empty()) p.decisions.push(applied_removals(step_index_, s.erased));
       }
       record_pose(p, step);
       if (moves_ && step.has_scan) moves_->record(drawn_scan(p.move, p.pose, {}, {}, {}, nullptr), &p.move);

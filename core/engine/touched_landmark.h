@@ -75,10 +75,14 @@ void write_touched(std::vector<TouchedLandmark>& touched, bool keep_localities, 
 // or started (kNoLandmark: none), and the landmarks the negative evidence erased.
 inline StepDecisions applied_decisions(std::int64_t step, std::span<const TouchedLandmark> touched,
                                        std::span<const int> touched_of, const std::vector<LandmarkId>& erased) {
-  StepDecisions applied{step, std::vector<LandmarkId>(touched_of.size(), kNoLandmark), erased};
+  StepDecisions applied{step, StepDecisions::Ids(touched_of.size(), kNoLandmark), {erased.begin(), erased.end()}};
   for (std::size_t k = 0; k < touched_of.size(); ++k)
     if (touched_of[k] >= 0) applied.landmarks[k] = touched[touched_of[k]].landmark.id;
   return applied;
+}
+// A scan that paired nothing but erased landmarks.
+inline StepDecisions applied_removals(std::int64_t step, const std::vector<LandmarkId>& erased) {
+  return {step, {}, {erased.begin(), erased.end()}};
 }
 
 }  // namespace arbor

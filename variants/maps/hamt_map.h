@@ -17,7 +17,7 @@
 #include "core/types/box2.h"
 #include "core/types/landmark.h"
 #include "core/engine/map_concept.h"
-#include "variants/maps/node_pool.h"
+#include "core/memory/node_pool.h"
 #include "variants/maps/persistent_map_base.h"
 #include "variants/maps/persistent_node.h"
 

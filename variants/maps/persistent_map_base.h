@@ -19,7 +19,7 @@
 #include "core/engine/map_concept.h"
 #include "core/types/box2.h"
 #include "core/types/landmark.h"
-#include "variants/maps/node_pool.h"
+#include "core/memory/node_pool.h"
 #include "variants/maps/persistent_node.h"
 
 namespace arbor::internal {

@@ -11,7 +11,7 @@
 
 #include "core/types/box2.h"
 #include "core/types/landmark.h"
-#include "variants/maps/node_pool.h"
+#include "core/memory/node_pool.h"
 
 namespace arbor::internal {
 

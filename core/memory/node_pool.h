@@ -1,7 +1,7 @@
-// Node allocation for the persistent map back ends: a pooled, thread-safe heap plus live-node counters that
-// the leak tests and the memory benchmarks read.
-#ifndef ARBOR_VARIANTS_MAPS_NODE_POOL_H_
-#define ARBOR_VARIANTS_MAPS_NODE_POOL_H_
+// Node allocation for the persistent structures (the map back ends, the particles' histories): a pooled,
+// thread-safe heap plus live-node counters that the leak tests and the memory benchmarks read.
+#ifndef ARBOR_CORE_MEMORY_NODE_POOL_H_
+#define ARBOR_CORE_MEMORY_NODE_POOL_H_
 
 #include <atomic>
 #include <cstddef>
@@ -11,7 +11,7 @@
 
 namespace arbor::internal {
 
-// Allocates the nodes of one back end (Tag tells the back ends apart so each has its own counters).
+// Allocates the nodes of one structure (Tag tells them apart so each has its own counters).
 //
 // Why tbbmalloc and no free list of our own: particles are updated in parallel, and a node allocated by one
 // thread is routinely freed by another (the particle that owned it was resampled away on another thread).
@@ -95,4 +95,4 @@ inline bool ref_unique(const std::atomic<std::uint32_t>& rc) { return rc.load(st
 
 }  // namespace arbor::internal
 
-#endif  // ARBOR_VARIANTS_MAPS_NODE_POOL_H_
+#endif  // ARBOR_CORE_MEMORY_NODE_POOL_H_
