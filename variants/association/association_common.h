@@ -30,6 +30,7 @@ struct IndividualGating {
   std::vector<char> near_any;    // measurement i lies inside the new-landmark gate of some candidate
   std::vector<Mat2> inverse;     // C_jj^-1 per candidate (buffer)
   std::vector<char> valid;       // C_jj was positive definite
+  std::vector<double> reach2;    // squared range innovation past which candidate j is outside both gates
 };
 
 // Gates every (measurement, candidate) pair: O(m n) 2x2 Mahalanobis distances, counted in stats->tests.
