@@ -3,6 +3,7 @@
 // docs/cli.md "Exit status and budgets": exit 0 with finite output, or exit 2 (input, options) / 1
 // (environment) with a message naming file:line:field where the input has lines, and no result.json after a
 // failure.
+#include <algorithm>
 #include <unistd.h>
 
 #include <filesystem>
@@ -103,6 +104,19 @@ HostileCase bad_prior_map(std::string name, std::string rows, std::string messag
           kRun + "--prior-map {dir}/m.csv", 2, std::move(message)};
 }
 
+// A shipped dataset with one line edited, then converted: `arbor convert` refuses it (exit 2) with a message
+// matching `message`. The dataset's folder name with hyphens is its --from name.
+HostileCase converted_dataset_edit(std::string klass, std::string name, std::string dataset, std::string file,
+                                   std::string pattern, std::string replacement, std::string message) {
+  std::string from = dataset;
+  std::replace(from.begin(), from.end(), '_', '-');
+  const std::string command = "{arbor} convert --from " + from + " --input {dir}/" + dataset + " --out {dir}/out/" +
+                              dataset + ".scn";
+  return {std::move(klass), std::move(name),
+          dataset_edit(std::move(dataset), std::move(file), std::move(pattern), std::move(replacement)), command, 2,
+          std::move(message)};
+}
+
 std::vector<HostileCase> hostile_cases() {
   const std::string field_re = R"(:\d+: field ')";
   return {
@@ -140,30 +154,20 @@ std::vector<HostileCase> hostile_cases() {
        "{arbor} smooth --isam {dir}/" + kIsam + " --out {dir}/out", 2, "victoria_park.txt" + field_re + "c_xx'"},
       // 2. Exit 0 with NaN or nonsense.
       {"nan_output", "empty_out", no_setup, "{arbor} run --scenario {dir}/w.scn --out ''", 2, "--out: must not be empty"},
-      {"nan_output", "victoria_park_speed_1e300",
-       dataset_edit("victoria_park", "csv_from_mat/aa3_dr.csv", R"(^(21965),[^,\n]+)", "$1,1e300"),
-       "{arbor} convert --from victoria-park --input {dir}/victoria_park --out {dir}/out/v.scn", 2,
-       "aa3_dr.csv" + field_re + "speed_mps'"},
+      converted_dataset_edit("nan_output", "victoria_park_speed_1e300", "victoria_park", "csv_from_mat/aa3_dr.csv",
+                             R"(^(21965),[^,\n]+)", "$1,1e300", "aa3_dr.csv" + field_re + "speed_mps'"),
       {"nan_output", "smooth_isam_landmark_at_1e200",
        dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+ \d+) [^ \n]+)", "$1 1e200"),
        "{arbor} smooth --isam {dir}/" + kIsam + " --out {dir}/out", 2, "victoria_park.txt" + field_re + "x'"},
-      {"nan_output", "utias_odometry_speed_1e300",
-       dataset_edit("utias_mrclam", "Robot1_Odometry.dat", R"(^(\s*[0-9.]+\s+)[^\s]+)", "$1 1e300"),
-       "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
-       "Robot1_Odometry.dat" + field_re + "v'"},
-      {"nan_output", "car_park_gps_at_1e300",
-       dataset_edit("acfr_car_park", "csv/gps.csv", R"(^([0-9.]+),[^,\n]+)", "$1,1e300"),
-       "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn", 2,
-       "gps.csv" + field_re + "x_east_m'"},
+      converted_dataset_edit("nan_output", "utias_odometry_speed_1e300", "utias_mrclam", "Robot1_Odometry.dat",
+                             R"(^(\s*[0-9.]+\s+)[^\s]+)", "$1 1e300", "Robot1_Odometry.dat" + field_re + "v'"),
+      converted_dataset_edit("nan_output", "car_park_gps_at_1e300", "acfr_car_park", "csv/gps.csv",
+                             R"(^([0-9.]+),[^,\n]+)", "$1,1e300", "gps.csv" + field_re + "x_east_m'"),
       // A control file cut mid-run converted with exit 0: its last reading was held through the remaining scans.
-      {"nan_output", "car_park_dead_reckoning_cut",
-       dataset_edit("acfr_car_park", "csv/dead_reckoning.csv", R"(^49\.[\s\S]*)", ""),
-       "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn", 2,
-       "dead_reckoning.csv" + field_re + "time'"},
-      {"nan_output", "victoria_park_no_detections",
-       dataset_edit("victoria_park", "leung_extracted/measurements.dat", R"([\s\S]*)", ""),
-       "{arbor} convert --from victoria-park --input {dir}/victoria_park --out {dir}/out/v.scn", 2,
-       "measurements.dat: no tree detections"},
+      converted_dataset_edit("nan_output", "car_park_dead_reckoning_cut", "acfr_car_park", "csv/dead_reckoning.csv",
+                             R"(^49\.[\s\S]*)", "", "dead_reckoning.csv" + field_re + "time'"),
+      converted_dataset_edit("nan_output", "victoria_park_no_detections", "victoria_park", "leung_extracted/measurements.dat",
+                             R"([\s\S]*)", "", "measurements.dat: no tree detections"),
       // 3. Writers that emitted files their own reader rejects: now refused, and nothing written.
       {"writers", "simulate_sigma_range_zero", no_setup, kSimulate + "--sigma-range 0", 2, "field 'sigma_range'"},
       {"writers", "simulate_fov_100", no_setup, kSimulate + "--fov 100", 2, "field 'fov'"},
@@ -171,10 +175,8 @@ std::vector<HostileCase> hostile_cases() {
       {"writers", "convert_isam_landmark_at_1e200",
        dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+ \d+) [^ \n]+)", "$1 1e200"),
        "{arbor} convert --from isam --input {dir}/" + kIsam + " --out {dir}/out/i.scn", 2, "victoria_park.txt" + field_re + "x'"},
-      {"writers", "victoria_park_time_int64_min",
-       dataset_edit("victoria_park", "csv_from_mat/aa3_dr.csv", R"(^21965,)", "-9223372036854775808,"),
-       "{arbor} convert --from victoria-park --input {dir}/victoria_park --out {dir}/out/v.scn", 2,
-       "aa3_dr.csv" + field_re + "time_ms'"},
+      converted_dataset_edit("writers", "victoria_park_time_int64_min", "victoria_park", "csv_from_mat/aa3_dr.csv",
+                             R"(^21965,)", "-9223372036854775808,", "aa3_dr.csv" + field_re + "time_ms'"),
       // 4. Hangs and blow-ups: counts are checked against the bytes before anything is allocated.
       {"blowups", "problem_declaring_1e7_predictions", file("p", "arbor-association-problem 1\nobservations 0\npredictions 10000000\n"),
        "{arbor} associate --problem {dir}/p", 2, "p" + field_re + "predictions count'"},
@@ -263,14 +265,11 @@ std::vector<HostileCase> hostile_cases() {
        "field 'known-gate': --known-gate applies only to --assoc known"},
       {"messages", "move_window_with_relocalize", no_setup, kRun + "--assoc jcbb --move-window 5 --relocalize", 2,
        "field 'move-window': --move-window and --relocalize do not combine"},
-      {"messages", "utias_landmark_listed_twice",
-       dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*6\s[^\n]*\n))", "$1$1"),
-       "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
-       "Landmark_Groundtruth.dat" + field_re + "subject': landmark subject 6 is listed twice"},
-      {"messages", "utias_landmark_id_past_32_bits",
-       dataset_edit("utias_mrclam", "Landmark_Groundtruth.dat", R"(^(\s*)6(\s))", "$14294967302$2"),
-       "{arbor} convert --from utias-mrclam --input {dir}/utias_mrclam --out {dir}/out/u.scn", 2,
-       "Landmark_Groundtruth.dat" + field_re + "subject'"},
+      converted_dataset_edit("messages", "utias_landmark_listed_twice", "utias_mrclam", "Landmark_Groundtruth.dat",
+                             R"(^(\s*6\s[^\n]*\n))", "$1$1",
+                             "Landmark_Groundtruth.dat" + field_re + "subject': landmark subject 6 is listed twice"),
+      converted_dataset_edit("messages", "utias_landmark_id_past_32_bits", "utias_mrclam", "Landmark_Groundtruth.dat",
+                             R"(^(\s*)6(\s))", "$14294967302$2", "Landmark_Groundtruth.dat" + field_re + "subject'"),
       {"messages", "sweep_metric_typo", file("s.toml", sweep_spec("metrics = [\"ate_rmse\"]", "particles = 4\nseed = 1\n")),
        "{arbor} sweep {dir}/s.toml --out {dir}/out", 2, "s.toml" + field_re + "sweep.metrics'"},
       {"messages", "simulate_clutter_beyond_the_sampler", no_setup, kSimulate + "--clutter 5000", 2, "clutter rate must lie in"},
