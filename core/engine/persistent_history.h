@@ -76,7 +76,7 @@ class PersistentHistory {
   // Every particle pushes at every step, and a node is often freed on another thread than the one that made
   // it (its particle was resampled away there): the back ends' pool, with its per-thread bins and tallies,
   // where the global heap and one shared counter cost 5 % of a Victoria Park run in locks and cache-line
-  // transfers (results/engine/<commit>_vm_gcc-12.2.0/).
+  // transfers (results/engine/b0ab821_vm_gcc-12.2.0/).
   using Pool = internal::NodePool<Node>;
   static Node* make_node(Node* parent, Entry entry) {
     return new (Pool::allocate(sizeof(Node))) Node{{1}, parent, std::move(entry)};
