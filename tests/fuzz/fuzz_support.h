@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "core/io/input_error.h"
+#include "core/io/scenario_format.h"
+#include "core/types/scenario.h"
 
 namespace arbor::fuzz {
 
@@ -89,6 +91,15 @@ bool accepted(F&& f) {
   } catch (const InputError&) {
     return false;
   }
+}
+
+// A dataset converter's target body: convert(dir) on copy with the input in place of one of its files, then
+// the scenario writer on what it returns.
+template <class Convert>
+void convert_and_write(DatasetCopy& copy, const std::uint8_t* data, std::size_t size, Convert&& convert) {
+  copy.with_input(data, size, [&](const std::string& dir) {
+    accepted([&] { write_scenario(convert(dir), (scratch_dir() / "out.scn").string()); });
+  });
 }
 
 }  // namespace arbor::fuzz
