@@ -75,20 +75,25 @@ inline Mat3 roughening_kernel(double roughen, int particles, const Mat3& set_cov
 template <class Particle>
 void take_children(const std::vector<int>& parents, std::vector<Particle>* particles, tbb::task_arena& arena) {
   const int m = static_cast<int>(parents.size());
-  std::vector<int> runs;  // where each run of equal parents begins, then the end
-  for (int i = 0; i < m; ++i)
-    if (i == 0 || parents[i] != parents[i - 1]) runs.push_back(i);
-  runs.push_back(m);
+  std::vector<int> first_child(m, -1);  // per particle: its first child (parents is non-decreasing), or -1
+  for (int i = m - 1; i >= 0; --i) first_child[parents[i]] = i;
   std::vector<Particle> next(m);
+  // One parallel pass over the old particles, each copied into its children or, not drawn, released: two
+  // passes cost more in scheduling than the work (results/engine/b0ab821_vm_gcc-12.2.0/).
   arena.execute([&] {
-    tbb::parallel_for(0, static_cast<int>(runs.size()) - 1, [&](int r) {
-      Particle& parent = (*particles)[parents[runs[r]]];
-      for (int i = runs[r]; i + 1 < runs[r + 1]; ++i) next[i] = parent;
-      next[runs[r + 1] - 1] = std::move(parent);
+    tbb::parallel_for(0, m, [&](int j) {
+      Particle& parent = (*particles)[j];
+      if (first_child[j] < 0) {
+        parent = Particle{};
+        return;
+      }
+      int last = first_child[j];
+      while (last + 1 < m && parents[last + 1] == j) ++last;
+      for (int i = first_child[j]; i < last; ++i) next[i] = parent;
+      next[last] = std::move(parent);
     });
   });
   particles->swap(next);
-  arena.execute([&] { tbb::parallel_for(0, m, [&](int i) { next[i] = Particle{}; }); });
 }
 
 }  // namespace arbor
