@@ -17,29 +17,36 @@ namespace arbor {
 // A landmark at the sensor itself has no bearing; q is floored so values and Jacobians stay finite there.
 inline constexpr double kMinSquaredRange = 1e-12;
 
-// The predicted range alone, to the bit what range_bearing_predict gives: a landmark can be ruled out of view
-// by its range before the bearing's atan2 and the Jacobians are paid for.
-inline double predicted_range(const Pose2& x, const Vec2& m) {
-  const double dx = m.x() - x.x, dy = m.y() - x.y;
-  return std::sqrt(std::max(dx * dx + dy * dy, kMinSquaredRange));
-}
-
-// The Jacobians alone, to the bit what range_bearing_predict gives: a caller that has the prediction (and has
-// kept the landmark in view by it) pays only for these.
-inline void range_bearing_jacobians(const Pose2& x, const Vec2& m, Mat2* J_z_lm, Mat23* J_z_pose) {
+// The landmark's offset from the pose and its squared and plain range, computed one way for the prediction,
+// the range alone and the Jacobians, so that each gives to the bit what the others do.
+struct RangeGeometry {
+  double dx, dy, q, r;
+};
+inline RangeGeometry range_geometry(const Pose2& x, const Vec2& m) {
   const double dx = m.x() - x.x, dy = m.y() - x.y;
   const double q = std::max(dx * dx + dy * dy, kMinSquaredRange);
-  const double r = std::sqrt(q);
-  if (J_z_lm) *J_z_lm << dx / r, dy / r, -dy / q, dx / q;
-  if (J_z_pose) *J_z_pose << -dx / r, -dy / r, 0, dy / q, -dx / q, -1;
+  return {dx, dy, q, std::sqrt(q)};
+}
+
+// The predicted range alone: a landmark can be ruled out of view by its range before the bearing's atan2 and
+// the Jacobians are paid for.
+inline double predicted_range(const Pose2& x, const Vec2& m) { return range_geometry(x, m).r; }
+
+// The Jacobians of a geometry already computed.
+inline void range_bearing_jacobians(const RangeGeometry& g, Mat2* J_z_lm, Mat23* J_z_pose) {
+  if (J_z_lm) *J_z_lm << g.dx / g.r, g.dy / g.r, -g.dy / g.q, g.dx / g.q;
+  if (J_z_pose) *J_z_pose << -g.dx / g.r, -g.dy / g.r, 0, g.dy / g.q, -g.dx / g.q, -1;
+}
+// The Jacobians alone: a caller that has the prediction (and has kept the landmark in view by it) pays only
+// for these.
+inline void range_bearing_jacobians(const Pose2& x, const Vec2& m, Mat2* J_z_lm, Mat23* J_z_pose) {
+  range_bearing_jacobians(range_geometry(x, m), J_z_lm, J_z_pose);
 }
 
 inline Vec2 range_bearing_predict(const Pose2& x, const Vec2& m, Mat2* J_z_lm = nullptr, Mat23* J_z_pose = nullptr) {
-  const double dx = m.x() - x.x, dy = m.y() - x.y;
-  const double q = std::max(dx * dx + dy * dy, kMinSquaredRange);
-  const double r = std::sqrt(q);
-  range_bearing_jacobians(x, m, J_z_lm, J_z_pose);
-  return {r, wrap_angle(std::atan2(dy, dx) - x.theta)};
+  const RangeGeometry g = range_geometry(x, m);
+  range_bearing_jacobians(g, J_z_lm, J_z_pose);
+  return {g.r, wrap_angle(std::atan2(g.dy, g.dx) - x.theta)};
 }
 
 // Innovation z - z_hat with the bearing difference wrapped.
