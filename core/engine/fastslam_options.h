@@ -27,17 +27,13 @@ enum class Likelihood { kGaussian, kStudentT };
 enum class GateCovariance { kParticle, kSet };
 
 // The command-line names of each option's values (core/enum_names.h).
-template <>
-inline constexpr EnumNames<FilterVersion, 3> kNamesOf<FilterVersion>{
+template <> inline constexpr EnumNames<FilterVersion, 3> kNamesOf<FilterVersion>{
     {{FilterVersion::kFastSlam1, "fastslam1"}, {FilterVersion::kFastSlam2, "fastslam2"}, {FilterVersion::kEkf, "ekf"}}};
-template <>
-inline constexpr EnumNames<MotionSampling, 2> kNamesOf<MotionSampling>{
+template <> inline constexpr EnumNames<MotionSampling, 2> kNamesOf<MotionSampling>{
     {{MotionSampling::kPerScan, "per-scan"}, {MotionSampling::kPerControl, "per-control"}}};
-template <>
-inline constexpr EnumNames<Likelihood, 2> kNamesOf<Likelihood>{
+template <> inline constexpr EnumNames<Likelihood, 2> kNamesOf<Likelihood>{
     {{Likelihood::kGaussian, "gaussian"}, {Likelihood::kStudentT, "student-t"}}};
-template <>
-inline constexpr EnumNames<GateCovariance, 2> kNamesOf<GateCovariance>{
+template <> inline constexpr EnumNames<GateCovariance, 2> kNamesOf<GateCovariance>{
     {{GateCovariance::kParticle, "particle"}, {GateCovariance::kSet, "set"}}};
 
 // Landmarks near the edge of the sensor's view are association candidates (they may be seen), but only

@@ -16,10 +16,9 @@ namespace arbor {
 enum class MotionModelKind { kOdometry, kVelocity, kAckermann };
 
 // As scenario files and the command line name them (core/enum_names.h).
-template <>
-inline constexpr EnumNames<MotionModelKind, 3> kNamesOf<MotionModelKind>{{{MotionModelKind::kOdometry, "odometry"},
-                                                      {MotionModelKind::kVelocity, "velocity"},
-                                                      {MotionModelKind::kAckermann, "ackermann"}}};
+template <> inline constexpr EnumNames<MotionModelKind, 3> kNamesOf<MotionModelKind>{
+    {{MotionModelKind::kOdometry, "odometry"}, {MotionModelKind::kVelocity, "velocity"},
+     {MotionModelKind::kAckermann, "ackermann"}}};
 
 struct MotionModel {
   MotionModelKind kind = MotionModelKind::kOdometry;

@@ -14,8 +14,7 @@
 namespace arbor {
 
 enum class WorldKind { kUniform, kClustered, kRooms };
-template <>
-inline constexpr EnumNames<WorldKind, 3> kNamesOf<WorldKind>{
+template <> inline constexpr EnumNames<WorldKind, 3> kNamesOf<WorldKind>{
     {{WorldKind::kUniform, "uniform"}, {WorldKind::kClustered, "clustered"}, {WorldKind::kRooms, "rooms"}}};
 
 struct WorldOptions {

@@ -22,11 +22,9 @@ enum class SmootherLoss { kNone, kHuber, kCauchy };
 enum class SmootherLinearSolver { kSparseSchur, kSparseNormalCholesky };
 
 // The CLI's names (core/enum_names.h).
-template <>
-inline constexpr EnumNames<SmootherLoss, 3> kNamesOf<SmootherLoss>{
+template <> inline constexpr EnumNames<SmootherLoss, 3> kNamesOf<SmootherLoss>{
     {{SmootherLoss::kNone, "none"}, {SmootherLoss::kHuber, "huber"}, {SmootherLoss::kCauchy, "cauchy"}}};
-template <>
-inline constexpr EnumNames<SmootherLinearSolver, 2> kNamesOf<SmootherLinearSolver>{
+template <> inline constexpr EnumNames<SmootherLinearSolver, 2> kNamesOf<SmootherLinearSolver>{
     {{SmootherLinearSolver::kSparseSchur, "sparse-schur"},
      {SmootherLinearSolver::kSparseNormalCholesky, "sparse-normal-cholesky"}}};
 
