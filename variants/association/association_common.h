@@ -56,10 +56,16 @@ inline void finish_unpaired(const std::vector<char>& near_any, std::vector<Landm
     if ((*pairing)[i] == kUnassigned) (*pairing)[i] = near_any[i] ? kSpurious : kNewLandmark;
 }
 
+// Whether a 2x2 symmetric matrix is positive definite (Sylvester's criterion), the test invert_spd2 makes.
+inline bool is_spd2(const Mat2& a) {
+  const double det = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
+  return a(0, 0) > 0.0 && det > 0.0;
+}
+
 // Inverse of a 2x2 SPD matrix; false when it is not positive definite (degenerate covariance).
 inline bool invert_spd2(const Mat2& a, Mat2* inverse) {
+  if (!is_spd2(a)) return false;
   const double det = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
-  if (!(a(0, 0) > 0.0) || !(det > 0.0)) return false;
   *inverse << a(1, 1) / det, -a(0, 1) / det, -a(1, 0) / det, a(0, 0) / det;
   return true;
 }

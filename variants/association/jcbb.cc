@@ -43,11 +43,19 @@ class JcbbSearch {
 
  private:
   // Per-candidate terms of the information form; false (use the Cholesky form) when some individual S_j is
-  // not invertible.
+  // not invertible. That test is over every candidate, as it always was; the terms themselves only for the
+  // candidates some level lists, the only ones the search reads (on Victoria Park the terms of every
+  // candidate in the widened view were most of this search's own time).
   bool prepare_information_form() {
+    for (const AssociationCandidate& c : p_.candidates)
+      if (!association::candidate_information_exists(c)) return false;
     s_.information.resize(p_.candidates.size());
-    for (std::size_t j = 0; j < p_.candidates.size(); ++j)
-      if (!association::candidate_information(p_.candidates[j], &s_.information[j])) return false;
+    s_.has_information.assign(p_.candidates.size(), 0);
+    for (const int j : s_.list) {
+      if (s_.has_information[j]) continue;
+      s_.has_information[j] = 1;
+      association::candidate_information(p_.candidates[j], &s_.information[j]);
+    }
     s_.sums.assign(static_cast<std::size_t>(levels_) + 1, association::JointInformation{});
     return true;
   }

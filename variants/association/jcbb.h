@@ -29,7 +29,8 @@ struct JcbbScratch {
   std::vector<double> W;          // L^-1 B for the pairing under test (2k x 2)
   std::vector<Mat23> HP;          // H_pose_j P per candidate
   // Information form (see Jcbb): per candidate its terms; sums[d] over the first d pairings.
-  std::vector<association::CandidateInformation> information;
+  std::vector<association::CandidateInformation> information;  // written for the listed candidates only
+  std::vector<char> has_information;
   std::vector<association::JointInformation> sums;
 };
 

@@ -59,6 +59,9 @@ struct CandidateInformation {
   Mat3 HtSinvH;
 };
 
+// Whether candidate_information succeeds: the candidate's individual covariance S is positive definite.
+inline bool candidate_information_exists(const AssociationCandidate& c) { return is_spd2(0.5 * (c.S + c.S.transpose())); }
+
 // False when the candidate's individual covariance S is not positive definite (use the dense form).
 inline bool candidate_information(const AssociationCandidate& c, CandidateInformation* out) {
   if (!invert_spd2(0.5 * (c.S + c.S.transpose()), &out->S_inv)) return false;
