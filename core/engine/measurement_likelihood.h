@@ -6,12 +6,12 @@
 
 #include <cmath>
 
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "core/engine/fastslam_options.h"
 #include "core/math/angles.h"
 #include "core/math/eigen_types.h"
+#include "core/math/ldlt_solve2.h"
 
 namespace arbor {
 
@@ -24,7 +24,7 @@ class MeasurementLikelihood {
   // The measurement's log-likelihood under innovation covariance S, and the factor by which the update should
   // scale its noise: 1 for the Gaussian, (nu + d^2) / (nu + 2) for the Student-t.
   double operator()(const Vec2& innovation, const Mat2& S, double* noise_scale) const {
-    const double d2 = innovation.dot(S.ldlt().solve(innovation));
+    const double d2 = innovation.dot(ldlt_solve2(S, innovation));  // S.ldlt().solve, to the bit
     const double log_det = std::log(S.determinant());
     if (kind_ == Likelihood::kGaussian) {
       *noise_scale = 1.0;
