@@ -1,7 +1,8 @@
 // S^-1 b for a 2x2 S by Eigen 3.4's LDLT<Matrix2d> (lower triangle, diagonal pivoting), operation for
 // operation and in its order: LDLT.h's ldlt_inplace<Lower>::unblocked, then _solve_impl_transposed with its
 // pseudo-inverse of D (entries at or below the smallest normal double count as zero). The result is the same
-// to the bit (tests/core/ldlt_solve2_test.cc compares the two on random, degenerate and non-finite systems).
+// to the bit, a NaN's sign aside (tests/core/ldlt_solve2_test.cc compares the two on random, degenerate and
+// non-finite systems).
 // What it leaves out is what a solve never reads: the L1 norm that LDLT::compute keeps for rcond(), the sign
 // and the info flags. The measurement likelihood solves one such system per pairing and particle; Eigen's
 // general code for it was 3 % of a Victoria Park run.
