@@ -9,10 +9,9 @@
 #include <span>
 #include <vector>
 
-#include <Eigen/Cholesky>
-
 #include "core/engine/touched_landmark.h"
 #include "core/math/eigen_types.h"
+#include "core/math/ldlt_solve2.h"
 #include "core/types/landmark.h"
 
 namespace arbor {
@@ -103,7 +102,7 @@ class LoopClosing {
           continue;
         const Vec2 d = copy.mean - lm.mean;
         const Mat2 C = copy.cov + lm.cov + drift_.topLeftCorner<2, 2>();
-        if (d.dot(C.ldlt().solve(d)) > gate_) continue;
+        if (d.dot(ldlt_solve2(C, d)) > gate_) continue;
         original = &lm;
         ++matches;
       }

@@ -9,10 +9,9 @@
 #include <limits>
 #include <string_view>
 
-#include <Eigen/Cholesky>
-
 #include "core/association/association_problem.h"
 #include "core/math/chi_square.h"
+#include "core/math/ldlt_solve2.h"
 #include "core/models/range_bearing_model.h"
 
 namespace arbor {
@@ -42,7 +41,7 @@ class KnownAssociation {
       }
       ++result.stats.tests;
       const Vec2 nu = range_bearing_innovation(m.z, problem.candidates[match].z_hat);
-      if (nu.dot(problem.innovation_covariance(match, match).ldlt().solve(nu)) <= gate_)
+      if (nu.dot(ldlt_solve2(problem.innovation_covariance(match, match), nu)) <= gate_)
         result.pairing[k] = problem.candidates[match].id;
       else
         ++result.stats.rejected;
