@@ -3,7 +3,8 @@
 # (or calibration-move|evaluation-move: the resample-move study, apart because it takes about 25 minutes;
 # calibration-assoc|evaluation-assoc: every real association strategy, where `arbor run`'s default is chosen;
 # evaluation-roughen: roughened resampling, left off on calibration data, on the evaluation set;
-# calibration-resample: the resampling threshold, with EKF-SLAM beside it)
+# calibration-resample: the resampling threshold, with EKF-SLAM beside it;
+# calibration-kidnap|evaluation-kidnap: --relocalize on kidnapped and plain worlds, about 2 minutes)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -14,10 +15,24 @@ set_name=${1:?usage: $0 SET OUT [ARBOR_BINARY]}
 out=$(realpath -m "${2:?usage: $0 SET OUT [ARBOR_BINARY]}")
 arbor=$(realpath "${3:-build/bin/arbor}")
 cd "$(dirname "$0")/../.."
+python=/usr/bin/python3  # Debian's, with numpy and pandas (the first python3 on PATH may lack them)
+# Relocalisation, whose thresholds were chosen on seeds 1-40 (results/association/d43e3e0_vm_gcc-12.2.0):
+# uniform, rooms and clustered worlds, each kidnapped and plain, with and without --relocalize.
+if [[ $set_name == *-kidnap ]]; then
+  case $set_name in
+    calibration-kidnap) seeds=$(seq 1 20) ;;
+    evaluation-kidnap) seeds=$(seq 10000 10019) ;;
+    *) echo "arbor: unknown set '$set_name' (calibration-kidnap, evaluation-kidnap)" >&2; exit 2 ;;
+  esac
+  SEEDS="$seeds" WORLDS="uniform rooms clustered" experiments/scripts/kidnap_study.sh "$out/$set_name" "$arbor"
+  $python analysis/studies/kidnap.py "$out/$set_name"
+  echo "arbor: held-out $set_name set done: $out/$set_name/kidnap.md"
+  exit 0
+fi
 case $set_name in
   calibration | calibration-move | calibration-assoc | calibration-resample) robots="1 2" ;;
   evaluation | evaluation-move | evaluation-assoc | evaluation-roughen) robots="3 4 5" ;;
-  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move or -assoc, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
+  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc or -kidnap, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p out/scenarios "$out"
@@ -25,7 +40,6 @@ for r in $robots; do
   scn=out/scenarios/utias_d6_robot$r.scn
   "$arbor" convert --from utias-mrclam --input "$utias" --robot "$r" --out "$scn" > /dev/null
 done
-python=/usr/bin/python3  # Debian's, with numpy and pandas (the first python3 on PATH may lack them)
 for spec in experiments/heldout/${set_name}_*.toml; do
   name=$(basename "$spec" .toml)
   "$arbor" sweep "$spec" --out "$out/$name" --jobs 2
