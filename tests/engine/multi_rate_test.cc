@@ -1,8 +1,11 @@
 // Prediction between scans (Probabilistic Robotics Table 13.2): on a world whose odometry is read K times per
 // scan, each particle carries its predicted mean and covariance through every control and draws once per scan.
 // The tests: the accumulated covariance is exactly the chain of EKF predictions; runs stay bit-identical across
-// thread counts; per-scan sampling beats per-control sampling and keeps the NEES in its band; and an outlier
-// under known association is rejected, counted, and treated exactly as clutter.
+// thread counts; per-scan sampling is as accurate as per-control sampling and keeps the NEES in its band; and
+// an outlier under known association is rejected, counted, and treated exactly as clutter.
+#include <algorithm>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "core/engine/fastslam.h"
@@ -113,15 +116,29 @@ TEST(MultiRate, BitIdenticalWithOneAndTwoThreads) {
 
 // Per-scan sampling draws each particle once from the whole prediction and lets the FastSLAM 2.0 proposal
 // correct it; per-control sampling random-walks every particle and proposes with one control's covariance.
-// Measured on the simulator of d43e3e0 (150 scans, K = 10, 10 particles, seeds 1-5): ATE per-scan
-// 0.04-0.17 m against per-control 0.09-0.21 m, better on every seed.
-TEST(MultiRate, PerScanSamplingBeatsPerControl) {
-  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+// What per-scan sampling surely buys is consistency (the next test) and speed (deferred steps,
+// composed_motion.h). Its accuracy gain is small: the motion-sampling study finds per-scan ahead at K = 10-50
+// (results/engine/fc7eacd_vm_gcc-12.2.0), while on these short worlds, over seeds 1-10 at d2485e1 (150 scans,
+// K = 10), per-scan wins 5 of 10 with 10 particles (median ATE 0.140 against 0.137 m) and 4 of 10 with 100
+// (0.131 against 0.130 m). Until stop 54 this test asserted a win on each of seeds 1-3 (measured at d43e3e0
+// on seeds 1-5), which one change in how particles draw undid; it now asserts that per-scan sampling costs
+// no accuracy: its median within 1.25x of per-control's.
+TEST(MultiRate, PerScanSamplingIsAsAccurateAsPerControl) {
+  const int seeds = 10;
+  std::vector<double> scan_ate, control_ate;
+  for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
     const Scenario s = testing::simulated_world(seed, 150, 0.0, 10);
     const RunOutput scan = run_fastslam(s, known(FilterVersion::kFastSlam2, 10, seed, MotionSampling::kPerScan));
     const RunOutput control = run_fastslam(s, known(FilterVersion::kFastSlam2, 10, seed, MotionSampling::kPerControl));
-    EXPECT_LT(scan.result["ate_rmse_m"].get<double>(), control.result["ate_rmse_m"].get<double>()) << "seed " << seed;
+    scan_ate.push_back(scan.result["ate_rmse_m"].get<double>());
+    control_ate.push_back(control.result["ate_rmse_m"].get<double>());
   }
+  std::ranges::sort(scan_ate);
+  std::ranges::sort(control_ate);
+  const double scan_median = 0.5 * (scan_ate[seeds / 2 - 1] + scan_ate[seeds / 2]);
+  const double control_median = 0.5 * (control_ate[seeds / 2 - 1] + control_ate[seeds / 2]);
+  EXPECT_LE(scan_median, 1.25 * control_median);
+  EXPECT_LT(scan_ate.back(), 1.0) << "every per-scan run stays on the map";
 }
 
 // Consistency on a short horizon over 30 seeds (Bar-Shalom et al. 2001, §5.4: the average of 30 NEES of a
@@ -144,8 +161,10 @@ TEST(MultiRate, PerScanSamplingIsConsistentOnAShortHorizonOver30Seeds) {
   }
 }
 
-// An outlier 20 sigma off in range, under known association with --known-gate 0.999: the gate rejects it and counts it, and the run
-// is bit-identical to one where that measurement is labelled clutter (which known association never fuses).
+// An outlier 20 sigma off in range, under known association with a gate: the gate rejects it and counts it, and
+// the run is bit-identical to one where that measurement is labelled clutter (which known association never
+// fuses). The gate is set at 1 - 1e-9 (d^2 = 41.4), far below the outlier's d^2 of about 400: at 0.999 a true
+// measurement's own chance of refusal (and the particles' overconfidence) made the count depend on the draw.
 TEST(KnownGate, AnOutlierIsRejectedCountedAndTreatedAsClutter) {
   Scenario outlier = testing::simulated_world(5, 40, 0.0, 1);
   ScenarioStep& step = outlier.steps[30];
@@ -157,7 +176,7 @@ TEST(KnownGate, AnOutlierIsRejectedCountedAndTreatedAsClutter) {
   clutter.steps[30].measurements.front().truth_id = kTruthClutter;
 
   RunConfig c = known(FilterVersion::kFastSlam2, 20, 1, MotionSampling::kPerScan);
-  c.options.association.known_gate_probability = 0.999;  // the gate is off by default (issue 41): ask for it
+  c.options.association.known_gate_probability = 1.0 - 1e-9;  // the gate is off by default (issue 41): ask for it
   c.out_dir = testing::scratch_dir("gate_outlier");
   const RunOutput a = run_fastslam(outlier, c);
   const std::string files_a = testing::read_file(c.out_dir + "/trajectory.tum") + testing::read_file(c.out_dir + "/map.csv");
