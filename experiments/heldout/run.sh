@@ -5,7 +5,7 @@
 # evaluation-roughen: roughened resampling, left off on calibration data, on the evaluation set;
 # calibration-resample: the resampling threshold, with EKF-SLAM beside it;
 # calibration-kidnap|evaluation-kidnap: --relocalize on kidnapped and plain worlds, about 2 minutes;
-# calibration-gates: JCBB's compatibility and new-landmark gates)
+# calibration-gates|evaluation-gates: JCBB's compatibility and new-landmark gates)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -32,8 +32,8 @@ if [[ $set_name == *-kidnap ]]; then
 fi
 case $set_name in
   calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen) robots="3 4 5" ;;
-  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc or -kidnap, evaluation-roughen, calibration-resample, calibration-gates)" >&2; exit 2 ;;
+  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates) robots="3 4 5" ;;
+  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc or -kidnap, evaluation-roughen, calibration-resample, calibration-gates, evaluation-gates)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p out/scenarios "$out"
