@@ -374,6 +374,64 @@ TEST_F(AnalysisScripts, FailureRateAndTailsAreComputedRightOnHandMadeRuns) {
   EXPECT_NE(csv.find("\"rooms, clutter = 2 /scan\",fastslam2,6,5,3,0.5,"), std::string::npos) << csv;
 }
 
+// Issue 41: the smoother given each run's own pairings. On rooms seeds 1-3 the reference smoother has 0.1 m; run
+// 1 fails (1.0 m) and its twin passes (0.2 m): its path alone failed; run 2 fails and so does its twin (0.5 m);
+// run 3 passes (0.2 m) and its twin did not finish (a folder without result.json), which counts as failed. Runs
+// 2 and 3 map true landmark 7 twice, the copy started 60 scans after 7 was last measured, and landmark 8
+// twice, its copy 10 scans after: two landmarks mapped twice, one copy after a gap.
+TEST_F(AnalysisScripts, OwnPairingsSeparatePathFromPairingFailuresAndCountLateCopies) {
+  ScratchDir out("own_pairings");
+  {
+    std::ofstream scenario(out / "rooms.scn");
+    scenario << "arbor-scenario 2\n";
+    for (int step = 0; step <= 60; ++step) {
+      scenario << "step " << step << " 0 0 1\n";
+      if (step == 0) scenario << "scan 2\nz 1 0 - 7\nz 1 0 - 8\n";
+      if (step == 10) scenario << "scan 1\nz 1 0 - 8\n";
+      if (step == 60) scenario << "scan 2\nz 1 0 - 7\nz 1 0 - clutter\n";
+    }
+  }
+  const std::filesystem::path root(out.str());
+  const auto write_run = [&](const std::string& key, const std::string& associations) {
+    std::filesystem::create_directories(root / "runs" / key);
+    std::ofstream(root / "runs" / key / "associations.csv") << "step,measurement,landmark\n" << associations;
+  };
+  const auto write_twin = [&](const std::string& key, const char* ate) {
+    std::filesystem::create_directories(root / "own_pairings" / key);
+    if (ate) std::ofstream(root / "own_pairings" / key / "result.json") << "{\"ate_aligned_rmse_m\": " << ate << "}";
+  };
+  {
+    std::ofstream rows(out / "results.jsonl");
+    const std::string rooms = R"("dataset":null,"world":"rooms","world_landmarks":250,"world_steps":500,"clutter":0)";
+    const double ate[] = {1.0, 0.5, 0.2};
+    const double f1[] = {0.9, 0.8, 0.7};
+    for (int seed = 1; seed <= 3; ++seed) {
+      const std::string n = std::to_string(seed);
+      rows << R"({"key":"smoother)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
+           << R"(,"filter":"smoother","map":null,"assoc":"known","particles":null,"seed":)" << n
+           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/smoother)" << n
+           << R"(","ate_aligned_rmse_m":0.1,"dead_reckoning_ate_m":5})" << "\n";
+      rows << R"({"key":"fastslam)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
+           << R"(,"filter":"fastslam2","map":"tree","assoc":"jcbb","particles":100,"seed":)" << n
+           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/fastslam)" << n << R"(","ate_aligned_rmse_m":)"
+           << ate[seed - 1] << R"(,"dead_reckoning_ate_m":5,"assoc_f1":)" << f1[seed - 1] << "}\n";
+    }
+  }
+  write_run("fastslam1", "0,0,0\n0,1,1\n10,0,1\n60,0,0\n60,1,-1\n");
+  for (const char* key : {"fastslam2", "fastslam3"}) write_run(key, "0,0,0\n0,1,1\n10,0,2\n60,0,3\n60,1,-1\n");
+  write_twin("fastslam1", "0.2");
+  write_twin("fastslam2", "0.5");
+  write_twin("fastslam3", nullptr);
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/own_pairings.py", out.str()}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  const std::string table = read_text(out / "own_pairings.md");
+  // Runs, failures, twins failing, path only, both, only the twin; medians of ATE (1.0, 0.5, 0.2), the finished
+  // twins (0.2, 0.5), the reference, F1; landmarks mapped twice (0, 2, 2) and late copies (0, 1, 1).
+  for (const char* group : {"rooms", "all"})
+    EXPECT_NE(table.find(std::string("| fastslam2 | ") + group + " | 3 | 2 | 2 | 1 | 1 | 1 | 0.5 | 0.35 | 0.1 | 0.8 | 2 | 1 |"),
+              std::string::npos) << table;
+}
+
 // The filter over time: a table row per configuration from its representative run's steps.csv (the largest
 // particle count), and the figure with step time per back end and N_eff per strategy.
 TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {
