@@ -5,7 +5,8 @@
 # evaluation-roughen: roughened resampling, left off on calibration data, on the evaluation set;
 # calibration-resample: the resampling threshold, with EKF-SLAM beside it;
 # calibration-kidnap|evaluation-kidnap: --relocalize on kidnapped and plain worlds, about 2 minutes;
-# calibration-gates|evaluation-gates: JCBB's compatibility and new-landmark gates)
+# calibration-gates|evaluation-gates: JCBB's compatibility and new-landmark gates;
+# calibration-loops|evaluation-loops: --close-loops and --pose-from-confirmed with JCBB)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -31,9 +32,9 @@ if [[ $set_name == *-kidnap ]]; then
   exit 0
 fi
 case $set_name in
-  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates) robots="3 4 5" ;;
-  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc or -kidnap, evaluation-roughen, calibration-resample, calibration-gates, evaluation-gates)" >&2; exit 2 ;;
+  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops) robots="1 2" ;;
+  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops) robots="3 4 5" ;;
+  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc or -kidnap, evaluation-roughen, calibration-resample, calibration-gates, evaluation-gates, calibration-loops, evaluation-loops)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p out/scenarios "$out"
@@ -46,7 +47,7 @@ for spec in experiments/heldout/${set_name}_*.toml; do
   "$arbor" sweep "$spec" --out "$out/$name" --jobs 2
   $python analysis/studies/heldout.py "$out/$name" --out "$out/$name"
 done
-[[ $set_name == *-move || $set_name == *-assoc || $set_name == *-roughen || $set_name == *-resample || $set_name == *-gates ]] && { echo "arbor: held-out $set_name set done: $out/*/heldout.md"; exit 0; }
+[[ $set_name == *-move || $set_name == *-assoc || $set_name == *-roughen || $set_name == *-resample || $set_name == *-gates || $set_name == *-loops ]] && { echo "arbor: held-out $set_name set done: $out/*/heldout.md"; exit 0; }
 # The smoother without its robust loss on the same robots: the reference before issue 41 made Cauchy the
 # default on real data.
 for r in $robots; do
