@@ -13,6 +13,7 @@ the true landmark was last measured: a loop the run did not close, which the ass
 
 Usage: /usr/bin/python3 analysis/studies/own_pairings.py SWEEP   (writes SWEEP/own_pairings.md and .csv)
 """
+import functools
 import json
 import os
 import sys
@@ -36,10 +37,14 @@ def twin_ate(sweep, key):
 GAP_SCANS = 50  # a copy started this many scans after its landmark was last measured: a loop not closed
 
 
+# A sweep's configurations share their scenarios: each is read once.
+scenario_steps = functools.lru_cache(maxsize=None)(ar.read_scenario_steps)
+
+
 def mapped_twice(run_dir, scenario):
     """(true landmarks mapped more than once, copies started more than GAP_SCANS scans after the landmark's
     previous measurement) in one run, from its associations.csv and the scenario's true ids."""
-    steps = ar.read_scenario_steps(scenario)
+    steps = scenario_steps(scenario)
     votes, last_measured, late_copies = {}, {}, 0
     with open(os.path.join(run_dir, "associations.csv"), encoding="utf-8") as f:
         next(f)
@@ -74,8 +79,10 @@ def table(df):
             continue
         for kind, g in groups(rows):
             ref = g["smoother_ate_aligned_m"]
-            twin = g["twin_ate_m"]  # NaN where the twin did not finish: a failure
-            twin_failed = ~(twin <= failures.SMOOTHER_FACTOR * ref) | (twin > g["dead_reckoning_ate_m"])
+            # The twin judged as failures.py judges a run: in the run's place, unfinished where it left no ATE.
+            twin = g["twin_ate_m"]
+            as_run = g.assign(**{failures.ATE: twin, "status": np.where(twin.isna(), "failed", "ok")})
+            twin_failed = failures.failed(as_run)
             records.append({
                 "configuration": label, "scenarios": kind, "runs": len(g),
                 "failures": int(g["failed"].sum()), "twin_failures": int(twin_failed.sum()),
