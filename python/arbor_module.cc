@@ -335,6 +335,7 @@ void bind_run(py::module_& m) {
             d["hypotheses"] = hypotheses;
             d["nees"] = column([](const StepRecord& r) { return r.nees.value_or(NAN); });
             d["scan"] = scan;
+            if (o.lineage_recorded) d["ancestor_age_s"] = column([](const StepRecord& r) { return r.ancestor_age_s.value_or(NAN); });
             return d;
           })
       .def("to_dir", [](const RunOutput& o, const std::filesystem::path& dir) {

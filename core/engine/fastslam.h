@@ -115,6 +115,15 @@ class FastSlam {
     return static_cast<int>(std::max_element(weights_.begin(), weights_.end()) - weights_.begin());
   }
 
+  // The time of the newest pose every particle's path shares: the set can revise nothing older (path
+  // degeneracy; Kong, Liu & Wong 1994, Doucet & Johansen 2011 §4.1). Empty while the paths share none.
+  std::optional<double> common_ancestor_time_s() const {
+    std::vector<const PoseHistory*> histories;
+    for (const ParticleState& p : particles_) histories.push_back(&p.history);
+    const TimedPose* shared = PoseHistory::newest_shared_entry(histories);
+    return shared ? std::optional<double>(shared->time_s) : std::nullopt;
+  }
+
   PoseEstimate estimate() const {
     if (pending_motion_.empty()) return weighted_pose_estimate(particles_, weights_);  // no copies at a scan
     std::vector<PosePrediction> now(particles_.size());

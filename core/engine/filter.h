@@ -4,6 +4,7 @@
 #define ARBOR_CORE_ENGINE_FILTER_H_
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ class Filter {
   // The best particle's association decisions, one entry per scan with measurements or removals, oldest
   // first; core/metrics/decision_score.h scores them against ground truth.
   virtual std::vector<StepDecisions> best_decisions() const = 0;
+  // The time of the newest pose all particles' paths share (FastSlam::common_ancestor_time_s); empty while
+  // they share none, and for a filter without particles.
+  virtual std::optional<double> common_ancestor_time_s() const = 0;
   // Scans at which the particles were re-seeded at a relocalised pose (FastSlamOptions::relocalize).
   virtual std::int64_t relocalizations() const = 0;
   // Summed over all particles; shared nodes are counted once per particle that references them.
@@ -87,6 +91,7 @@ class FilterImpl final : public Filter {
     return engine_.particle(engine_.best_particle()).decisions.to_vector();
   }
   std::int64_t relocalizations() const override { return engine_.relocalizations(); }
+  std::optional<double> common_ancestor_time_s() const override { return engine_.common_ancestor_time_s(); }
   MapMemoryStats memory_stats() const override { return engine_.memory_stats(); }
   std::string map_name() const override { return std::string(Map::kName); }
   std::string association_name() const override { return std::string(Assoc::kName); }

@@ -4,9 +4,11 @@
 #ifndef ARBOR_CORE_ENGINE_PERSISTENT_HISTORY_H_
 #define ARBOR_CORE_ENGINE_PERSISTENT_HISTORY_H_
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <new>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -62,6 +64,18 @@ class PersistentHistory {
     std::vector<Entry> out;
     for (const Node* n = head_; n; n = n->parent) out.push_back(n->entry);
     return {out.rbegin(), out.rend()};
+  }
+  // The newest entry every history in `histories` shares, or null where they share none (each particle's
+  // history starts at its own draw of the initial pose). The histories must be equally long, as the particles'
+  // are (every particle records at the same steps); O(n * the depth of the shared entry).
+  static const Entry* newest_shared_entry(std::span<const PersistentHistory* const> histories) {
+    std::vector<const Node*> nodes;
+    for (const PersistentHistory* h : histories) nodes.push_back(h->head_);
+    while (!nodes.empty() && nodes.front()) {
+      if (std::all_of(nodes.begin(), nodes.end(), [&](const Node* n) { return n == nodes.front(); })) return &nodes.front()->entry;
+      for (const Node*& n : nodes) n = n ? n->parent : nullptr;
+    }
+    return nullptr;
   }
   // Nodes ever allocated minus freed, all histories of this entry type together: the leak check of the tests.
   static std::int64_t live_nodes() { return Pool::live_nodes(); }

@@ -23,6 +23,7 @@ struct RunConfig {
   FastSlamOptions options;
   std::string out_dir;        // empty: compute the metrics but write no files
   bool progress = false;      // a progress line on stderr
+  bool record_lineage = false;  // steps.csv's ancestor_age_s (Filter::common_ancestor_time_s) at each scan
   // Called after every step; it may throw to end the run there (the Python API checks for Ctrl-C here).
   std::function<void()> after_step;
 };

@@ -223,6 +223,10 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
       for_particles(value_option("loop-drift-m", FIELD(options.loop_drift_m),
                    "Position drift (standard deviation per axis) a loop may have built up, for --close-loops",
                    at_least(1e-6))),
+      for_particles(flag_option("record-lineage", FIELD(record_lineage),
+                  "Record at each scan how far back the particles' paths share one pose (steps.csv's ancestor_age_s; "
+                  "empty while they share none): the set can revise nothing older. Costs M times that depth a scan, "
+                  "outside the step's time")),
       {"prior-map",
        [](CLI::App& cmd, RunConfig& c, RunChoices&) {
          return cmd

@@ -31,13 +31,17 @@ std::string associations_csv(const std::vector<StepDecisions>& decisions) {
   return out;
 }
 
-std::string steps_csv(const std::vector<StepRecord>& steps) {
-  std::string out = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees,relocalized,scan\n";
+// ancestor_age_s, with --record-lineage only, is the last column: every other run's file stays as it was.
+std::string steps_csv(const std::vector<StepRecord>& steps, bool with_lineage) {
+  std::string out = "step,time_s,step_time_s,n_eff,resampled,landmarks,hypotheses,nees,relocalized,scan";
+  out += with_lineage ? ",ancestor_age_s\n" : "\n";
   for (std::size_t k = 0; k < steps.size(); ++k) {
     const StepRecord& s = steps[k];
-    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{},{},{}\n", k, s.time_s, s.step_time_s,
+    fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{},{},{}", k, s.time_s, s.step_time_s,
                    s.stats.n_eff, s.stats.resampled ? 1 : 0, s.stats.best_landmarks, s.stats.hypotheses,
                    s.nees ? fmt::format("{}", *s.nees) : "", s.stats.relocalized ? 1 : 0, s.scan ? 1 : 0);
+    if (with_lineage) out += "," + (s.ancestor_age_s ? fmt::format("{}", *s.ancestor_age_s) : std::string());
+    out += "\n";
   }
   return out;
 }
@@ -86,6 +90,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   std::vector<double> step_times;
   step_times.reserve(scenario.steps.size());
   out.steps.reserve(scenario.steps.size());
+  out.lineage_recorded = config.record_lineage;
   std::vector<TimedPose>& mean_trajectory = out.mean_trajectory;
   mean_trajectory.push_back({scenario.start_time_s, filter->estimate().mean});
   double n_eff_sum = 0.0;
@@ -110,6 +115,8 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     moves_proposed += stats.moves_proposed;
     moves_accepted += stats.moves_accepted;
     StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats, std::nullopt, step.has_scan});
+    if (config.record_lineage && step.has_scan)
+      if (const auto shared = filter->common_ancestor_time_s()) record.ancestor_age_s = step.time_s - *shared;
     if (step.has_scan || step.truth_pose) {
       const PoseEstimate estimate = filter->estimate();
       mean_trajectory.push_back({step.time_s, estimate.mean});
@@ -200,7 +207,7 @@ void write_run_files(const RunOutput& output, const std::string& out_dir) {
   write_tum(dir + "trajectory_mean.tum", output.mean_trajectory);
   write_reference_tum(output.reference, out_dir);
   write_map_csv(dir + "map.csv", output.map);
-  write_file_atomically(dir + "steps.csv", steps_csv(output.steps));
+  write_file_atomically(dir + "steps.csv", steps_csv(output.steps, output.lineage_recorded));
   write_file_atomically(dir + "associations.csv", associations_csv(output.decisions));
   // result.json last: its presence means the run finished and every other file is complete.
   write_file_atomically(dir + "result.json", output.result.dump(2) + "\n");

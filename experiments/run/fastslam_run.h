@@ -31,6 +31,8 @@ struct StepRecord {
   StepStats stats;             // Filter::last_step_stats
   std::optional<double> nees;  // at steps with a truth pose
   bool scan = false;           // the step carried a scan (real logs have many odometry-only steps)
+  // RunConfig::record_lineage: seconds back to the newest pose every particle's path shares (empty: none yet).
+  std::optional<double> ancestor_age_s;
 };
 
 // Everything a run leaves: write_run_files turns it into the files of DESIGN.md §9.
@@ -43,6 +45,7 @@ struct RunOutput {
   std::vector<Landmark> map;             // the best particle's confirmed landmarks, ascending id
   std::vector<StepDecisions> decisions;  // the best particle's
   std::vector<StepRecord> steps;         // one per scenario step
+  bool lineage_recorded = false;         // RunConfig::record_lineage: steps.csv gains ancestor_age_s
 };
 
 // The filter's time per scan: for each step that carried a scan, the summed step time of the odometry-only

@@ -93,7 +93,8 @@ class Result:
     """One run: `metrics` (result.json as a dict; its fields are also attributes), `trajectory` and
     `trajectory_mean` (N x 4: t, x, y, theta), `map` (dict: id, mean K x 2, covariance K x 2 x 2, log_odds,
     confirmed), `steps` (dict of per-step arrays: time_s, step_time_s, n_eff, resampled, landmarks,
-    hypotheses, nees, scan). Arrays are copied once out of the engine."""
+    hypotheses, nees, scan; with record_lineage=True also ancestor_age_s, NaN where the paths share no pose
+    and between scans). Arrays are copied once out of the engine."""
 
     def __init__(self, output):
         self._output = output

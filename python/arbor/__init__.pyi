@@ -214,6 +214,10 @@ class _FilterOptions(TypedDict, total=False):
     loop_drift_m: float
     """Position drift (standard deviation per axis) a loop may have built up, for --close-loops (default
     1.0)"""
+    record_lineage: bool
+    """Record at each scan how far back the particles' paths share one pose (steps.csv's ancestor_age_s; empty
+    while they share none): the set can revise nothing older. Costs M times that depth a scan, outside the
+    step's time (default False)"""
     prior_map: _Path | None
     """Start every particle from this map (map.csv: a run's map, or `arbor simulate --survey-out`):
     localisation in a known map; its landmarks count as confirmed, new ones get ids above its largest"""

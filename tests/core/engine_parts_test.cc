@@ -97,6 +97,27 @@ TEST(PoseHistory, ReplacingTheNewestEntryLeavesCopiesAndTheOlderPastAlone) {
   EXPECT_EQ(PoseHistory::live_nodes(), before);
 }
 
+// The newest shared entry is a shared node, not an equal value: two paths through the same poses drawn apart
+// share nothing.
+TEST(PoseHistory, TheNewestSharedEntryIsWhereThePathsLastBranched) {
+  PoseHistory root;
+  for (int i = 0; i < 3; ++i) root.push({double(i), {double(i), 0, 0}});
+  PoseHistory a = root, b = root, c = root;
+  a.push({3, {3, 0, 0}});
+  b.push({3, {3, 0, 0}});  // the same value as a's, in its own node
+  c.push({3, {-3, 0, 0}});
+  const std::vector<const PoseHistory*> abc{&a, &b, &c};
+  ASSERT_NE(PoseHistory::newest_shared_entry(abc), nullptr);
+  EXPECT_EQ(PoseHistory::newest_shared_entry(abc)->time_s, 2);
+  PoseHistory d = a;  // a copy after the branch shares a's newest entry
+  const std::vector<const PoseHistory*> ad{&a, &d};
+  EXPECT_EQ(PoseHistory::newest_shared_entry(ad)->time_s, 3);
+  PoseHistory other;  // its own start: nothing in common
+  for (int i = 0; i < 4; ++i) other.push({double(i), {double(i), 0, 0}});
+  const std::vector<const PoseHistory*> a_other{&a, &other};
+  EXPECT_EQ(PoseHistory::newest_shared_entry(a_other), nullptr);
+}
+
 TEST(PoseHistory, AVeryLongHistoryIsFreedWithoutRecursion) {
   const auto before = PoseHistory::live_nodes();
   {

@@ -432,6 +432,60 @@ TEST_F(AnalysisScripts, OwnPairingsSeparatePathFromPairingFailuresAndCountLateCo
               std::string::npos) << table;
 }
 
+// Issue 41: the particle set's memory (steps.csv's ancestor_age_s) against the loops it closes. Rooms seeds 1-3,
+// reference smoother 0.1 m, runs 1.0 / 0.5 / 0.2 m (two fail). Scans at 5, 10, 20 and 60 s; landmark 7 is seen
+// at 5 s and again at 60 s (a loop of 55 s), landmark 8 at 10 and 20 s (10 s: no loop). Run 1's paths never
+// meet (memory: the run so far, 5 / 10 / 20 / 60 s, median 15), so its loop is within it; runs 2 and 3 remember
+// 10 and 30 s at the loop (ages 0, 5, 5 before: median 5), so theirs is closed beyond it. Median of the medians
+// 5 s, p90 13 s; 3 loops, 2 beyond; the failed runs remember 15 and 5 s (median 10), the other 5 s.
+TEST_F(AnalysisScripts, LineageComparesTheSetsMemoryWithItsLoops) {
+  ScratchDir out("lineage");
+  {
+    std::ofstream scenario(out / "rooms.scn");
+    scenario << "arbor-scenario 2\n";
+    for (int step = 0; step <= 60; ++step) {
+      scenario << "step " << step << " 0 0 1\n";
+      if (step == 5 || step == 60) scenario << "scan 1\nz 1 0 - 7\n";
+      if (step == 10 || step == 20) scenario << "scan 2\nz 1 0 - 8\nz 1 0 - clutter\n";
+    }
+  }
+  const std::filesystem::path root(out.str());
+  const char* ages[] = {",,,", "0,5,5,10", "0,5,5,30"};
+  {
+    std::ofstream rows(out / "results.jsonl");
+    const std::string rooms = R"("dataset":null,"world":"rooms","world_landmarks":250,"world_steps":500,"clutter":0)";
+    const double ate[] = {1.0, 0.5, 0.2};
+    for (int seed = 1; seed <= 3; ++seed) {
+      const std::string n = std::to_string(seed);
+      rows << R"({"key":"smoother)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
+           << R"(,"filter":"smoother","map":null,"assoc":"known","particles":null,"seed":)" << n
+           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/smoother)" << n
+           << R"(","ate_aligned_rmse_m":0.1,"dead_reckoning_ate_m":5})" << "\n";
+      rows << R"({"key":"fastslam)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
+           << R"(,"filter":"fastslam2","map":"tree","assoc":"known","particles":100,"seed":)" << n
+           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/fastslam)" << n << R"(","ate_aligned_rmse_m":)"
+           << ate[seed - 1] << R"(,"dead_reckoning_ate_m":5})" << "\n";
+      std::filesystem::create_directories(root / "runs" / ("fastslam" + n));
+      std::ofstream steps(root / "runs" / ("fastslam" + n) / "steps.csv");
+      steps << "step,time_s,scan,ancestor_age_s\n";
+      std::string age = ages[seed - 1];
+      int at = 0;
+      for (int step : {5, 10, 20, 60}) {
+        const std::size_t comma = age.find(',', at);
+        steps << step << "," << step << ",1," << age.substr(at, comma - at) << "\n";
+        at = comma == std::string::npos ? static_cast<int>(age.size()) : static_cast<int>(comma) + 1;
+        steps << step + 1 << "," << step + 1 << ",0,\n";  // an odometry step: not a scan
+      }
+    }
+  }
+  ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/lineage.py", out.str()}, out / "log.txt"), 0)
+      << read_text(out / "log.txt");
+  const std::string table = read_text(out / "lineage.md");
+  for (const char* group : {"rooms", "all"})
+    EXPECT_NE(table.find(std::string("| fastslam2 | ") + group + " | 3 | 2 | 0.5 | 5 | 13 | 3 | 2 | 10 | 5 |"),
+              std::string::npos) << table;
+}
+
 // The filter over time: a table row per configuration from its representative run's steps.csv (the largest
 // particle count), and the figure with step time per back end and N_eff per strategy.
 TEST_F(AnalysisScripts, StepSeriesSummarisesStepTimeAndEffectiveSampleSize) {

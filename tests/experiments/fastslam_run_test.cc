@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 
 #include <gtest/gtest.h>
 
@@ -126,6 +127,42 @@ TEST(FastSlamRun, StepsCsvMarksScansAndTheResultTimesThem) {
   long marked = 0;
   for (std::size_t at = csv.find('\n'); (at = csv.find('\n', at + 1)) != std::string::npos;) marked += csv[at - 1] == '1';
   EXPECT_EQ(marked, scans);
+}
+
+// --record-lineage adds steps.csv's last column and changes nothing else. One particle's path always shares
+// its newest pose with itself (age 0); particles that never resample (no measurements: equal weights) keep
+// the paths of their own initial draws, which share nothing (empty); on a world with landmarks the set
+// resamples, and an age is never more than the time since the start.
+TEST(FastSlamRun, TheLineageAgeIsHowFarBackTheParticlesPathsMeet) {
+  const Scenario world = testing::simulated_world(1, 200, 0.0, 1);
+  Scenario empty = world;
+  for (ScenarioStep& step : empty.steps) step.measurements.clear();
+  const auto ages = [](const Scenario& scenario, int particles, bool record, std::string* files = nullptr) {
+    RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, particles, 1, 1);
+    c.record_lineage = record;
+    c.out_dir = testing::scratch_dir("lineage_" + std::to_string(particles) + (record ? "_on" : "_off"));
+    const RunOutput out = run_fastslam(scenario, c);
+    const std::string steps = testing::read_file(c.out_dir + "/steps.csv");
+    EXPECT_EQ(steps.substr(0, steps.find('\n')).ends_with(",scan,ancestor_age_s"), record);
+    if (files) *files = testing::read_file(c.out_dir + "/trajectory.tum") + testing::read_file(c.out_dir + "/map.csv");
+    std::vector<std::optional<double>> at_scans;
+    for (const StepRecord& s : out.steps)
+      if (s.scan) at_scans.push_back(s.ancestor_age_s);
+    return at_scans;
+  };
+  for (const auto& age : ages(world, 1, true)) EXPECT_EQ(age, std::optional<double>(0.0));
+  for (const auto& age : ages(empty, 20, true)) EXPECT_FALSE(age.has_value());
+  std::string on, off;
+  const auto shared = ages(world, 20, true, &on);
+  ages(world, 20, false, &off);
+  EXPECT_EQ(on, off);
+  EXPECT_GT(std::count_if(shared.begin(), shared.end(), [](const auto& a) { return a.has_value(); }), 0);
+  const double run_time = world.steps.back().time_s - world.start_time_s;
+  for (const auto& age : shared)
+    if (age) {
+      EXPECT_GE(*age, 0.0);
+      EXPECT_LE(*age, run_time);
+    }
 }
 
 // Known association scored from its record like any strategy: it never pairs wrongly, and every measurement

@@ -56,6 +56,24 @@ def test_run_writes_the_same_bytes_as_arbor_run(scenario, tmp_path):
     assert len(result.steps["n_eff"]) == len(scenario)
 
 
+def test_the_lineage_is_a_step_array_only_when_asked_for(tmp_path):
+    scenario = arbor.simulate(world="uniform", landmarks=60, steps=200, seed=7)  # long enough for paths to meet
+    plain, recorded = arbor.run(scenario, **RUN), arbor.run(scenario, record_lineage=True, **RUN)
+    assert "ancestor_age_s" not in plain.steps
+    assert np.array_equal(plain.trajectory, recorded.trajectory)
+    ages, scans = recorded.steps["ancestor_age_s"], recorded.steps["scan"]
+    assert np.isnan(ages[~scans]).all()
+    known = ages[~np.isnan(ages)]
+    assert len(known) > 0
+    assert (known >= 0).all() and (known <= recorded.steps["time_s"][-1]).all()
+    recorded.to_dir(tmp_path / "run")
+    csv = read(tmp_path / "run" / "steps.csv").decode().splitlines()
+    assert csv[0].endswith(",scan,ancestor_age_s")
+    cells = [line.split(",")[-1] for line in csv[1:]]
+    assert [cell == "" for cell in cells] == list(np.isnan(ages))
+    assert [float(cell) for cell in cells if cell] == list(known)
+
+
 def test_results_do_not_depend_on_the_thread_count(scenario):
     one, two = arbor.run(scenario, threads=1, **RUN), arbor.run(scenario, threads=2, **RUN)
     assert np.array_equal(one.trajectory, two.trajectory)

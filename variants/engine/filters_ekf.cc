@@ -29,6 +29,7 @@ class EkfFilter final : public Filter {
   std::int64_t best_loop_closures() const override { return 0; }
   std::vector<StepDecisions> best_decisions() const override { return engine_.decisions().to_vector(); }
   std::int64_t relocalizations() const override { return 0; }
+  std::optional<double> common_ancestor_time_s() const override { return std::nullopt; }
   // The joint Gaussian (the covariance's allocated capacity) and the landmarks' records.
   MapMemoryStats memory_stats() const override {
     MapMemoryStats stats = engine_.map().memory_stats();
