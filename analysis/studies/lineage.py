@@ -14,6 +14,7 @@ no longer the path that the ATE scores.
 Usage: /usr/bin/python3 analysis/studies/lineage.py SWEEP   (writes SWEEP/lineage.md and .csv)
 """
 import functools
+import json
 import os
 import sys
 
@@ -55,9 +56,19 @@ def run_lineage(run_dir, scenario):
     return float(memory.median()), len(gaps), beyond
 
 
-def groups(df):
-    column = "world" if "world" in df and df["world"].notna().all() else "dataset"
-    return [(str(kind), rows) for kind, rows in df.groupby(column, sort=True)] + [("all", df)]
+def scenario_path(sweep, run_dir, scenario):
+    """A run's scenario file: a simulated world's copy inside the sweep, or the dataset file as the run read it
+    (result.json's config.scenario, relative to where the sweep ran; the sweep's own column is relative to its
+    spec)."""
+    inside = os.path.join(sweep, scenario)
+    if os.path.exists(inside):
+        return inside
+    with open(os.path.join(run_dir, "result.json"), encoding="utf-8") as f:
+        recorded = json.load(f)["config"]["scenario"]
+    if not os.path.exists(recorded):
+        raise FileNotFoundError(f"{run_dir}: scenario {scenario} is neither in the sweep nor at {recorded} "
+                                "(run the study from where the sweep ran)")
+    return recorded
 
 
 def table(df):
@@ -65,7 +76,7 @@ def table(df):
     for label, rows in failures.configurations(df):
         if label == failures.REFERENCE:
             continue
-        for kind, g in groups(rows):
+        for kind, g in failures.scenario_groups(rows):
             failed = g["failed"]
             records.append({
                 "configuration": label, "scenarios": kind, "runs": len(g), "failures": int(failed.sum()),
@@ -95,7 +106,8 @@ def main():
     sweep = sys.argv[1]
     df = failures.mark_failures(ar.load_results(sweep))
     particles = df["filter"] != "smoother"
-    stats = [run_lineage(os.path.join(sweep, run), os.path.join(sweep, scenario)) if p else (np.nan, 0, 0)
+    stats = [run_lineage(os.path.join(sweep, run), scenario_path(sweep, os.path.join(sweep, run), scenario)) if p
+             else (np.nan, 0, 0)
              for run, scenario, p in zip(df["run_dir"], df["scenario"], particles)]
     df = df.assign(memory_s=[s[0] for s in stats], loops=[s[1] for s in stats], beyond=[s[2] for s in stats])
     t = table(df)

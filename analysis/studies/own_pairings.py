@@ -65,19 +65,12 @@ def mapped_twice(run_dir, scenario):
     return sum(n - 1 for n in owners.values()), late_copies
 
 
-def groups(df):
-    """(world kind or dataset, rows) per scenario kind, then all of them."""
-    column = "world" if "world" in df and df["world"].notna().all() else "dataset"
-    out = [(str(kind), rows) for kind, rows in df.groupby(column, sort=True)]
-    return out + [("all", df)]
-
-
 def table(df):
     records = []
     for label, rows in failures.configurations(df):
         if label == failures.REFERENCE:
             continue
-        for kind, g in groups(rows):
+        for kind, g in failures.scenario_groups(rows):
             ref = g["smoother_ate_aligned_m"]
             # The twin judged as failures.py judges a run: in the run's place, unfinished where it left no ATE.
             twin = g["twin_ate_m"]

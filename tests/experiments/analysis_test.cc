@@ -374,6 +374,25 @@ TEST_F(AnalysisScripts, FailureRateAndTailsAreComputedRightOnHandMadeRuns) {
   EXPECT_NE(csv.find("\"rooms, clutter = 2 /scan\",fastslam2,6,5,3,0.5,"), std::string::npos) << csv;
 }
 
+// results.jsonl of rooms seeds 1-3: the reference smoother at 0.1 m on each, and a FastSLAM 2.0 run per seed
+// ("fastslam1".."fastslam3", in runs/) with the given strategy, aligned ATE and extra fields ("" or ",...").
+void write_rooms_results(const std::filesystem::path& file, const std::string& assoc, const double (&ate)[3],
+                         const std::string (&extra)[3]) {
+  std::ofstream rows(file);
+  const std::string rooms = R"("dataset":null,"world":"rooms","world_landmarks":250,"world_steps":500,"clutter":0)";
+  for (int seed = 1; seed <= 3; ++seed) {
+    const std::string n = std::to_string(seed);
+    rows << R"({"key":"smoother)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
+         << R"(,"filter":"smoother","map":null,"assoc":"known","particles":null,"seed":)" << n
+         << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/smoother)" << n
+         << R"(","ate_aligned_rmse_m":0.1,"dead_reckoning_ate_m":5})" << "\n";
+    rows << R"({"key":"fastslam)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
+         << R"(,"filter":"fastslam2","map":"tree","assoc":")" << assoc << R"(","particles":100,"seed":)" << n
+         << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/fastslam)" << n << R"(","ate_aligned_rmse_m":)"
+         << ate[seed - 1] << R"(,"dead_reckoning_ate_m":5)" << extra[seed - 1] << "}\n";
+  }
+}
+
 // Issue 41: the smoother given each run's own pairings. On rooms seeds 1-3 the reference smoother has 0.1 m; run
 // 1 fails (1.0 m) and its twin passes (0.2 m): its path alone failed; run 2 fails and so does its twin (0.5 m);
 // run 3 passes (0.2 m) and its twin did not finish (a folder without result.json), which counts as failed. Runs
@@ -400,23 +419,8 @@ TEST_F(AnalysisScripts, OwnPairingsSeparatePathFromPairingFailuresAndCountLateCo
     std::filesystem::create_directories(root / "own_pairings" / key);
     if (ate) std::ofstream(root / "own_pairings" / key / "result.json") << "{\"ate_aligned_rmse_m\": " << ate << "}";
   };
-  {
-    std::ofstream rows(out / "results.jsonl");
-    const std::string rooms = R"("dataset":null,"world":"rooms","world_landmarks":250,"world_steps":500,"clutter":0)";
-    const double ate[] = {1.0, 0.5, 0.2};
-    const double f1[] = {0.9, 0.8, 0.7};
-    for (int seed = 1; seed <= 3; ++seed) {
-      const std::string n = std::to_string(seed);
-      rows << R"({"key":"smoother)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
-           << R"(,"filter":"smoother","map":null,"assoc":"known","particles":null,"seed":)" << n
-           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/smoother)" << n
-           << R"(","ate_aligned_rmse_m":0.1,"dead_reckoning_ate_m":5})" << "\n";
-      rows << R"({"key":"fastslam)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
-           << R"(,"filter":"fastslam2","map":"tree","assoc":"jcbb","particles":100,"seed":)" << n
-           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/fastslam)" << n << R"(","ate_aligned_rmse_m":)"
-           << ate[seed - 1] << R"(,"dead_reckoning_ate_m":5,"assoc_f1":)" << f1[seed - 1] << "}\n";
-    }
-  }
+  write_rooms_results(out / "results.jsonl", "jcbb", {1.0, 0.5, 0.2},
+                      {R"(,"assoc_f1":0.9)", R"(,"assoc_f1":0.8)", R"(,"assoc_f1":0.7)"});
   write_run("fastslam1", "0,0,0\n0,1,1\n10,0,1\n60,0,0\n60,1,-1\n");
   for (const char* key : {"fastslam2", "fastslam3"}) write_run(key, "0,0,0\n0,1,1\n10,0,2\n60,0,3\n60,1,-1\n");
   write_twin("fastslam1", "0.2");
@@ -450,33 +454,16 @@ TEST_F(AnalysisScripts, LineageComparesTheSetsMemoryWithItsLoops) {
     }
   }
   const std::filesystem::path root(out.str());
-  const char* ages[] = {",,,", "0,5,5,10", "0,5,5,30"};
-  {
-    std::ofstream rows(out / "results.jsonl");
-    const std::string rooms = R"("dataset":null,"world":"rooms","world_landmarks":250,"world_steps":500,"clutter":0)";
-    const double ate[] = {1.0, 0.5, 0.2};
-    for (int seed = 1; seed <= 3; ++seed) {
-      const std::string n = std::to_string(seed);
-      rows << R"({"key":"smoother)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
-           << R"(,"filter":"smoother","map":null,"assoc":"known","particles":null,"seed":)" << n
-           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/smoother)" << n
-           << R"(","ate_aligned_rmse_m":0.1,"dead_reckoning_ate_m":5})" << "\n";
-      rows << R"({"key":"fastslam)" << n << R"(","status":"ok",)" << rooms << R"(,"world_seed":)" << n
-           << R"(,"filter":"fastslam2","map":"tree","assoc":"known","particles":100,"seed":)" << n
-           << R"(,"threads":1,"scenario":"rooms.scn","run_dir":"runs/fastslam)" << n << R"(","ate_aligned_rmse_m":)"
-           << ate[seed - 1] << R"(,"dead_reckoning_ate_m":5})" << "\n";
-      std::filesystem::create_directories(root / "runs" / ("fastslam" + n));
-      std::ofstream steps(root / "runs" / ("fastslam" + n) / "steps.csv");
-      steps << "step,time_s,scan,ancestor_age_s\n";
-      std::string age = ages[seed - 1];
-      int at = 0;
-      for (int step : {5, 10, 20, 60}) {
-        const std::size_t comma = age.find(',', at);
-        steps << step << "," << step << ",1," << age.substr(at, comma - at) << "\n";
-        at = comma == std::string::npos ? static_cast<int>(age.size()) : static_cast<int>(comma) + 1;
-        steps << step + 1 << "," << step + 1 << ",0,\n";  // an odometry step: not a scan
-      }
-    }
+  write_rooms_results(out / "results.jsonl", "known", {1.0, 0.5, 0.2}, {"", "", ""});
+  const int scans[] = {5, 10, 20, 60};
+  const char* ages[3][4] = {{"", "", "", ""}, {"0", "5", "5", "10"}, {"0", "5", "5", "30"}};
+  for (int run = 0; run < 3; ++run) {
+    const std::filesystem::path dir = root / "runs" / ("fastslam" + std::to_string(run + 1));
+    std::filesystem::create_directories(dir);
+    std::ofstream steps(dir / "steps.csv");
+    steps << "step,time_s,scan,ancestor_age_s\n";
+    for (int k = 0; k < 4; ++k)  // each scan, then an odometry step (not a scan)
+      steps << scans[k] << "," << scans[k] << ",1," << ages[run][k] << "\n" << scans[k] + 1 << "," << scans[k] + 1 << ",0,\n";
   }
   ASSERT_EQ(run_to_end({kPython, kSource + "/analysis/studies/lineage.py", out.str()}, out / "log.txt"), 0)
       << read_text(out / "log.txt");
