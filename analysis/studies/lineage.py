@@ -4,12 +4,12 @@ path, against how long the loops it has to close are. Per configuration and worl
 (analysis/arbor_analysis/failures.py), the set's memory, and the loops it closes beyond that memory.
 
 The memory at a scan is steps.csv's ancestor_age_s: the time back to the newest pose every particle's path
-shares. Nothing older can change any more, whatever the set sees later (resampling copies whole paths; Kong, Liu
-& Wong 1994; Doucet & Johansen 2011 §4.1). Where the paths share no pose yet, the memory is the whole run so
-far. A loop is a scan that measures a landmark last measured at least LOOP_S seconds before (the scenario's true
-ids); it closes beyond the memory when that gap is longer than the memory at the scan: the drift the robot built
-up along the loop is then in every particle's path, and the re-sighting can correct the pose and the map, but
-no longer the path that the ATE scores.
+shares. Nothing older can change any more, whatever the set sees later (resampling copies whole paths: path
+degeneracy; Bailey, Nieto & Nebot 2006; Doucet & Johansen 2011). Where the paths share no pose yet, the memory
+is the whole run so far. A loop is a scan that measures a landmark last measured at least LOOP_S seconds before
+(the scenario's true ids); it closes beyond the memory when that gap is longer than the memory at the scan: the
+drift the robot built up along the loop is then in every particle's path, and the re-sighting can correct the
+pose and the map, but no longer the path that the ATE scores.
 
 Usage: /usr/bin/python3 analysis/studies/lineage.py SWEEP   (writes SWEEP/lineage.md and .csv)
 """

@@ -116,7 +116,8 @@ class FastSlam {
   }
 
   // The time of the newest pose every particle's path shares: the set can revise nothing older (path
-  // degeneracy; Kong, Liu & Wong 1994, Doucet & Johansen 2011 §4.1). Empty while the paths share none.
+  // degeneracy: Bailey, Nieto & Nebot 2006, "Consistency of the FastSLAM algorithm"; Doucet & Johansen 2011,
+  // "A tutorial on particle filtering and smoothing"). Empty while the paths share none.
   std::optional<double> common_ancestor_time_s() const {
     std::vector<const PoseHistory*> histories;
     for (const ParticleState& p : particles_) histories.push_back(&p.history);
