@@ -4,7 +4,6 @@ configuration that is good on most seeds and lost on a few; the failure rate cou
 Reads: results.jsonl columns status, ate_aligned_rmse_m, dead_reckoning_ate_m, nees_median and, where present,
 consistency_horizon_scan, rejected_measurements, assoc_f1; the smoother's rows of the same scenarios and seeds."""
 
-import os
 import sys
 
 import numpy as np
@@ -77,14 +76,6 @@ def configurations(df):
     for _, rows in filters.groupby(by, sort=True, dropna=False):
         out.append((ar.label(rows.iloc[0], shown), rows))
     return out
-
-
-def scenario_groups(df):
-    """(world kind, or the dataset file's name, rows) per scenario kind, then ("all", df): the rows of one
-    configuration, as the per-run studies (own_pairings, lineage) break them down."""
-    column = "world" if "world" in df and df["world"].notna().all() else "dataset"
-    out = [(os.path.basename(str(kind)), rows) for kind, rows in df.groupby(column, sort=True)]
-    return out + [("all", df)]
 
 
 def median_of(df, column):

@@ -13,8 +13,6 @@ pose and the map, but no longer the path that the ATE scores.
 
 Usage: /usr/bin/python3 analysis/studies/lineage.py SWEEP   (writes SWEEP/lineage.md and .csv)
 """
-import functools
-import json
 import os
 import sys
 
@@ -23,16 +21,15 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
 from arbor_analysis import failures  # noqa: E402
 from arbor_analysis import results as ar  # noqa: E402
+from arbor_analysis import run_studies  # noqa: E402
 
 LOOP_S = 20.0  # a landmark measured again after this long: the robot went away and came back
-
-scenario_steps = functools.lru_cache(maxsize=None)(ar.read_scenario_steps)
 
 
 def loop_gaps(scenario):
     """{step index: the longest time since a landmark that step measures was last measured, when >= LOOP_S}."""
     last, gaps = {}, {}
-    for k, (time_s, _, ids) in enumerate(scenario_steps(scenario)):
+    for k, (time_s, _, ids) in enumerate(run_studies.scenario_steps(scenario)):
         longest = max((time_s - last[i] for i in ids if i is not None and i >= 0 and i in last), default=0.0)
         if longest >= LOOP_S:
             gaps[k] = longest
@@ -48,7 +45,7 @@ def run_lineage(run_dir, scenario):
     if "ancestor_age_s" not in steps:
         raise ValueError(f"{run_dir}/steps.csv: no ancestor_age_s column (run it with --record-lineage)")
     scans = steps[steps["scan"] == 1]
-    start = scenario_steps(scenario)[0][0]
+    start = run_studies.scenario_steps(scenario)[0][0]
     memory = scans["ancestor_age_s"].fillna(scans["time_s"] - start)  # no shared pose: the whole run so far
     memory_at = dict(zip(scans["step"], memory))
     gaps = loop_gaps(scenario)
@@ -56,27 +53,12 @@ def run_lineage(run_dir, scenario):
     return float(memory.median()), len(gaps), beyond
 
 
-def scenario_path(sweep, run_dir, scenario):
-    """A run's scenario file: a simulated world's copy inside the sweep, or the dataset file as the run read it
-    (result.json's config.scenario, relative to where the sweep ran; the sweep's own column is relative to its
-    spec)."""
-    inside = os.path.join(sweep, scenario)
-    if os.path.exists(inside):
-        return inside
-    with open(os.path.join(run_dir, "result.json"), encoding="utf-8") as f:
-        recorded = json.load(f)["config"]["scenario"]
-    if not os.path.exists(recorded):
-        raise FileNotFoundError(f"{run_dir}: scenario {scenario} is neither in the sweep nor at {recorded} "
-                                "(run the study from where the sweep ran)")
-    return recorded
-
-
 def table(df):
     records = []
     for label, rows in failures.configurations(df):
         if label == failures.REFERENCE:
             continue
-        for kind, g in failures.scenario_groups(rows):
+        for kind, g in run_studies.scenario_groups(rows):
             failed = g["failed"]
             records.append({
                 "configuration": label, "scenarios": kind, "runs": len(g), "failures": int(failed.sum()),
@@ -106,17 +88,13 @@ def main():
     sweep = sys.argv[1]
     df = failures.mark_failures(ar.load_results(sweep))
     particles = df["filter"] != "smoother"
-    stats = [run_lineage(os.path.join(sweep, run), scenario_path(sweep, os.path.join(sweep, run), scenario)) if p
+    stats = [run_lineage(os.path.join(sweep, run), run_studies.scenario_path(sweep, os.path.join(sweep, run), scenario)) if p
              else (np.nan, 0, 0)
              for run, scenario, p in zip(df["run_dir"], df["scenario"], particles)]
     df = df.assign(memory_s=[s[0] for s in stats], loops=[s[1] for s in stats], beyond=[s[2] for s in stats])
     t = table(df)
-    t.to_csv(os.path.join(sweep, "lineage.csv"), index=False)
-    text = markdown(t)
-    with open(os.path.join(sweep, "lineage.md"), "w", encoding="utf-8") as f:
-        f.write("# Path degeneracy: the particle set's memory and the loops it closes\n\n" +
-                "\n\n".join(__doc__.split("\n\n")[:2]) + "\n\n" + text + "\n")
-    print(text)
+    run_studies.write_tables(sweep, "lineage", "Path degeneracy: the particle set's memory and the loops it closes",
+                             "\n\n".join(__doc__.split("\n\n")[:2]), t, markdown(t))
     return 0
 
 

@@ -13,7 +13,6 @@ the true landmark was last measured: a loop the run did not close, which the ass
 
 Usage: /usr/bin/python3 analysis/studies/own_pairings.py SWEEP   (writes SWEEP/own_pairings.md and .csv)
 """
-import functools
 import json
 import os
 import sys
@@ -23,6 +22,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # analysis/: arbor_analysis
 from arbor_analysis import failures  # noqa: E402
 from arbor_analysis import results as ar  # noqa: E402
+from arbor_analysis import run_studies  # noqa: E402
 
 
 def twin_ate(sweep, key):
@@ -37,14 +37,10 @@ def twin_ate(sweep, key):
 GAP_SCANS = 50  # a copy started this many scans after its landmark was last measured: a loop not closed
 
 
-# A sweep's configurations share their scenarios: each is read once.
-scenario_steps = functools.lru_cache(maxsize=None)(ar.read_scenario_steps)
-
-
 def mapped_twice(run_dir, scenario):
     """(true landmarks mapped more than once, copies started more than GAP_SCANS scans after the landmark's
     previous measurement) in one run, from its associations.csv and the scenario's true ids."""
-    steps = scenario_steps(scenario)
+    steps = run_studies.scenario_steps(scenario)
     votes, last_measured, late_copies = {}, {}, 0
     with open(os.path.join(run_dir, "associations.csv"), encoding="utf-8") as f:
         next(f)
@@ -70,7 +66,7 @@ def table(df):
     for label, rows in failures.configurations(df):
         if label == failures.REFERENCE:
             continue
-        for kind, g in failures.scenario_groups(rows):
+        for kind, g in run_studies.scenario_groups(rows):
             ref = g["smoother_ate_aligned_m"]
             # The twin judged as failures.py judges a run: in the run's place, unfinished where it left no ATE.
             twin = g["twin_ate_m"]
@@ -113,16 +109,14 @@ def main():
     smoothed = df["key"].map(lambda k: os.path.isdir(os.path.join(sweep, "own_pairings", k)))
     df = df[(df["filter"] == "smoother") | smoothed]
     df = df.assign(twin_ate_m=[twin_ate(sweep, k) if f != "smoother" else np.nan for k, f in zip(df["key"], df["filter"])])
-    counts = [mapped_twice(os.path.join(sweep, run), os.path.join(sweep, scenario)) if f != "smoother" else (np.nan, np.nan)
+    counts = [mapped_twice(os.path.join(sweep, run), run_studies.scenario_path(sweep, os.path.join(sweep, run), scenario))
+              if f != "smoother" else (np.nan, np.nan)
               for run, scenario, f in zip(df["run_dir"], df["scenario"], df["filter"])]
     df = df.assign(mapped_twice=[c[0] for c in counts], late_copies=[c[1] for c in counts])
     t = table(df)
-    t.to_csv(os.path.join(sweep, "own_pairings.csv"), index=False)
-    text = markdown(t)
-    with open(os.path.join(sweep, "own_pairings.md"), "w", encoding="utf-8") as f:
-        f.write("# The smoother given each run's own pairings\n\n" + __doc__.split("\n\n")[0].split(": ", 1)[1] +
-                "\n\n" + __doc__.split("\n\n")[1] + "\n\n" + text + "\n")
-    print(text)
+    paragraphs = __doc__.split("\n\n")
+    run_studies.write_tables(sweep, "own_pairings", "The smoother given each run's own pairings",
+                             paragraphs[0].split(": ", 1)[1] + "\n\n" + paragraphs[1], t, markdown(t))
     return 0
 
 
