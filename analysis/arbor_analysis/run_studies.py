@@ -5,11 +5,22 @@ by scenario kind, and the tables they write beside the sweep."""
 import functools
 import json
 import os
+import sys
 
+from . import failures
 from . import results as ar
 
 # A sweep's configurations share their scenarios: each is read once.
 scenario_steps = functools.lru_cache(maxsize=None)(ar.read_scenario_steps)
+
+
+def main(doc, study):
+    """Runs study(sweep, results with the failures marked) on the sweep folder the command line names; without
+    one, prints the study's usage (doc) and returns 2."""
+    if len(sys.argv) != 2:
+        print(doc, file=sys.stderr)
+        return 2
+    return study(sys.argv[1], failures.mark_failures(ar.load_results(sys.argv[1])))
 
 
 def scenario_path(sweep, run_dir, scenario):
@@ -32,6 +43,16 @@ def scenario_groups(df):
     column = "world" if "world" in df and df["world"].notna().all() else "dataset"
     out = [(os.path.basename(str(kind)), rows) for kind, rows in df.groupby(column, sort=True)]
     return out + [("all", df)]
+
+
+def filter_groups(df):
+    """(configuration label, scenario kind, rows) for every filter configuration (the reference left out) and
+    each of its scenario kinds, then all of them (scenario_groups)."""
+    for label, rows in failures.configurations(df):
+        if label == failures.REFERENCE:
+            continue
+        for kind, g in scenario_groups(rows):
+            yield label, kind, g
 
 
 def write_tables(sweep, stem, heading, intro, table, text):

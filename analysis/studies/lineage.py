@@ -55,17 +55,14 @@ def run_lineage(run_dir, scenario):
 
 def table(df):
     records = []
-    for label, rows in failures.configurations(df):
-        if label == failures.REFERENCE:
-            continue
-        for kind, g in run_studies.scenario_groups(rows):
-            failed = g["failed"]
-            records.append({
-                "configuration": label, "scenarios": kind, "runs": len(g), "failures": int(failed.sum()),
-                "median_ate_m": g[failures.ATE].median(), "median_memory_s": g["memory_s"].median(),
-                "p90_memory_s": g["memory_s"].quantile(0.9), "loops": int(g["loops"].sum()),
-                "loops_beyond": int(g["beyond"].sum()), "memory_failed_s": g.loc[failed, "memory_s"].median(),
-                "memory_passed_s": g.loc[~failed, "memory_s"].median()})
+    for label, kind, g in run_studies.filter_groups(df):
+        failed = g["failed"]
+        records.append({
+            "configuration": label, "scenarios": kind, "runs": len(g), "failures": int(failed.sum()),
+            "median_ate_m": g[failures.ATE].median(), "median_memory_s": g["memory_s"].median(),
+            "p90_memory_s": g["memory_s"].quantile(0.9), "loops": int(g["loops"].sum()),
+            "loops_beyond": int(g["beyond"].sum()), "memory_failed_s": g.loc[failed, "memory_s"].median(),
+            "memory_passed_s": g.loc[~failed, "memory_s"].median()})
     return ar.pd.DataFrame(records)
 
 
@@ -81,12 +78,7 @@ def markdown(t):
     return "\n".join(lines)
 
 
-def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
-        return 2
-    sweep = sys.argv[1]
-    df = failures.mark_failures(ar.load_results(sweep))
+def study(sweep, df):
     particles = df["filter"] != "smoother"
     stats = [run_lineage(os.path.join(sweep, run), run_studies.scenario_path(sweep, os.path.join(sweep, run), scenario)) if p
              else (np.nan, 0, 0)
@@ -99,4 +91,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_studies.main(__doc__, study))

@@ -63,25 +63,22 @@ def mapped_twice(run_dir, scenario):
 
 def table(df):
     records = []
-    for label, rows in failures.configurations(df):
-        if label == failures.REFERENCE:
-            continue
-        for kind, g in run_studies.scenario_groups(rows):
-            ref = g["smoother_ate_aligned_m"]
-            # The twin judged as failures.py judges a run: in the run's place, unfinished where it left no ATE.
-            twin = g["twin_ate_m"]
-            as_run = g.assign(**{failures.ATE: twin, "status": np.where(twin.isna(), "failed", "ok")})
-            twin_failed = failures.failed(as_run)
-            records.append({
-                "configuration": label, "scenarios": kind, "runs": len(g),
-                "failures": int(g["failed"].sum()), "twin_failures": int(twin_failed.sum()),
-                "path_only": int((g["failed"] & ~twin_failed).sum()),
-                "both": int((g["failed"] & twin_failed).sum()),
-                "twin_only": int((~g["failed"] & twin_failed).sum()),
-                "median_ate_m": g[failures.ATE].median(), "median_twin_ate_m": g["twin_ate_m"].median(),
-                "median_reference_m": ref.median(),
-                "median_f1": g["assoc_f1"].median() if "assoc_f1" in g else np.nan,
-                "median_mapped_twice": g["mapped_twice"].median(), "median_late_copies": g["late_copies"].median()})
+    for label, kind, g in run_studies.filter_groups(df):
+        ref = g["smoother_ate_aligned_m"]
+        # The twin judged as failures.py judges a run: in the run's place, unfinished where it left no ATE.
+        twin = g["twin_ate_m"]
+        as_run = g.assign(**{failures.ATE: twin, "status": np.where(twin.isna(), "failed", "ok")})
+        twin_failed = failures.failed(as_run)
+        records.append({
+            "configuration": label, "scenarios": kind, "runs": len(g),
+            "failures": int(g["failed"].sum()), "twin_failures": int(twin_failed.sum()),
+            "path_only": int((g["failed"] & ~twin_failed).sum()),
+            "both": int((g["failed"] & twin_failed).sum()),
+            "twin_only": int((~g["failed"] & twin_failed).sum()),
+            "median_ate_m": g[failures.ATE].median(), "median_twin_ate_m": g["twin_ate_m"].median(),
+            "median_reference_m": ref.median(),
+            "median_f1": g["assoc_f1"].median() if "assoc_f1" in g else np.nan,
+            "median_mapped_twice": g["mapped_twice"].median(), "median_late_copies": g["late_copies"].median()})
     return ar.pd.DataFrame(records)
 
 
@@ -98,12 +95,7 @@ def markdown(t):
     return "\n".join(lines)
 
 
-def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
-        return 2
-    sweep = sys.argv[1]
-    df = failures.mark_failures(ar.load_results(sweep))
+def study(sweep, df):
     # The runs the study smoothed (all, or those ONLY picked): each has its folder, with a result.json where
     # the twin finished.
     smoothed = df["key"].map(lambda k: os.path.isdir(os.path.join(sweep, "own_pairings", k)))
@@ -121,4 +113,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_studies.main(__doc__, study))
