@@ -115,15 +115,8 @@ class FastSlam {
     return static_cast<int>(std::max_element(weights_.begin(), weights_.end()) - weights_.begin());
   }
 
-  // The time of the newest pose every particle's path shares: the set can revise nothing older (path
-  // degeneracy: Bailey, Nieto & Nebot 2006, "Consistency of the FastSLAM algorithm"; Doucet & Johansen 2011,
-  // "A tutorial on particle filtering and smoothing"). Empty while the paths share none.
-  std::optional<double> common_ancestor_time_s() const {
-    std::vector<const PoseHistory*> histories;
-    for (const ParticleState& p : particles_) histories.push_back(&p.history);
-    const TimedPose* shared = PoseHistory::newest_shared_entry(histories);
-    return shared ? std::optional<double>(shared->time_s) : std::nullopt;
-  }
+  // How far back the set can revise its path (paths_meet_time_s, core/engine/particle.h).
+  std::optional<double> common_ancestor_time_s() const { return paths_meet_time_s(particles_); }
 
   PoseEstimate estimate() const {
     if (pending_motion_.empty()) return weighted_pose_estimate(particles_, weights_);  // no copies at a scan
@@ -141,11 +134,7 @@ class FastSlam {
   // Scans at which every particle was re-seeded at a relocalised pose.
   std::int64_t relocalizations() const { return relocalization_ ? relocalization_->relocalizations() : 0; }
 
-  MapMemoryStats memory_stats() const {
-    MapMemoryStats total;
-    for (const auto& p : particles_) total += p.map.memory_stats();
-    return total;
-  }
+  MapMemoryStats memory_stats() const { return summed_memory_stats(particles_); }
 
  private:
   // Particle plus per-step counters the serial reduction reads.

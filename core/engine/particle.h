@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/check.h"
@@ -112,6 +113,25 @@ PoseEstimate weighted_pose_estimate(const std::vector<Particle>& particles, cons
     e.covariance += weights[i] * (d * d.transpose() + particles[i].pose_covariance);
   }
   return e;
+}
+
+// The time of the newest pose every particle's path shares: the set can revise nothing older (path
+// degeneracy: Bailey, Nieto & Nebot 2006, "Consistency of the FastSLAM algorithm"; Doucet & Johansen 2011,
+// "A tutorial on particle filtering and smoothing"). Empty while the paths share none.
+template <class Particle>
+std::optional<double> paths_meet_time_s(const std::vector<Particle>& particles) {
+  std::vector<const PoseHistory*> histories;
+  for (const Particle& p : particles) histories.push_back(&p.history);
+  const TimedPose* shared = PoseHistory::newest_shared_entry(histories);
+  return shared ? std::optional<double>(shared->time_s) : std::nullopt;
+}
+
+// The memory the particles' maps hold, each shared node counted once per map that reaches it.
+template <class Particle>
+MapMemoryStats summed_memory_stats(const std::vector<Particle>& particles) {
+  MapMemoryStats total;
+  for (const Particle& p : particles) total += p.map.memory_stats();
+  return total;
 }
 
 }  // namespace arbor
