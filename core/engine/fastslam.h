@@ -253,7 +253,7 @@ class FastSlam {
     if (loops_) loops_->find_aliases(s.touched, s.nearby, scan_index_, &p.aliases, &p.loop_closures);
     write_touched(s.touched, keep_localities_, &p.map);  // locality sets only where something reads them
     apply_negative_evidence(p, s, s.touched);
-    p.log_weight += log_weight;
+    p.log_weight += options_.weight_exponent * log_weight;  // FastSlamOptions::weight_exponent
     record_pose(p, step);
     p.decisions.push(applied_decisions(step_index_, s.touched, s.touched_of, s.erased));
     if (moves_) moves_->record(drawn_scan(p.move, p.pose, std::move(before), s.touched, s.touched_of, &step.measurements), &p.move);

@@ -60,6 +60,14 @@ struct FastSlamOptions {
   // bandwidth (d = 3). Copies of one parent then part at the next draw, which FastSLAM 2.0's proposal steers
   // with the scan. 0: off.
   double roughen = 0.0;
+  // Tempered importance weights: each scan's weight is raised to this power, 0 < weight_exponent <= 1 (1: the
+  // paper's weights). A finite set weighted by the exact weights gathers on a few paths faster than the
+  // posterior it stands for narrows, and grows overconfident over a run; below 1 the set selects as if every
+  // scan's measurements were 1 / weight_exponent times noisier in variance (the proposal and the landmark
+  // updates keep the real noise), so it resamples less and stays wider: the tempered likelihood of annealed
+  // particle filters (Deutscher, Blake & Reid 2000) and of generalised Bayesian updating under a
+  // misspecified model (Grunwald & van Ommen 2017).
+  double weight_exponent = 1.0;
   // Resample-move (Gilks & Berzuini 2001; core/engine/resample_move.h): after each resampling, every particle
   // tries move_steps Metropolis-Hastings proposals over the poses of its last move_window scans, its pairings
   // held fixed and the landmarks the window touched recomputed along the proposed path, at scales move_scale,
