@@ -135,6 +135,7 @@ Scenario read_scenario(const std::string& path) {
       last_time = step.time_s;
       step.control = {control_field(in, 2, "u1"), control_field(in, 3, "u2"), control_field(in, 4, "u3")};
       if (s.motion.kind != MotionModelKind::kOdometry && step.control[2] < 0.0) in.fail("u3", "dt must not be negative");
+      step.source_line = in.line_number();
       s.steps.push_back(std::move(step));
     } else if (kind == "truth") {
       in.expect_fields(4, 4, "truth");

@@ -1,0 +1,74 @@
+// The second hostile-input review (/work/hostile_findings.md): one case per finding fixed, named after its id
+// (A: crashes and hangs, B: silent wrong answers, C: messages). Each runs the real `arbor` binary and checks
+// the contract of hostile_harness.h: a finite run, or exit 2 naming the file, line and field.
+#include <filesystem>
+#include <functional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/experiments/hostile_harness.h"
+#include "tests/support/scratch.h"
+
+namespace arbor {
+namespace {
+
+using namespace hostile;  // NOLINT: the shared harness
+
+const std::string kReviewRun = "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --particles 8 ";
+
+// Every line of w.scn matching pattern replaced (scenario_edit replaces the first only).
+std::function<void(const fs::path&)> scenario_edit_every(std::string pattern, std::string replacement) {
+  return [=](const fs::path& dir) {
+    const std::regex re(pattern, std::regex::ECMAScript | std::regex::multiline);
+    write_text(dir / "w.scn", std::regex_replace(testing::read_file((dir / "w.scn").string()), re, replacement));
+  };
+}
+
+// w.scn simulated again with these odometry noise densities (the drawn controls carry that noise too).
+std::function<void(const fs::path&)> simulated_with_odometry_noise(std::string densities) {
+  return [=](const fs::path& dir) {
+    const auto r = testing::run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 10 --odometry-noise " +
+                                        densities + " --out " + (dir / "w.scn").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  };
+}
+
+std::vector<HostileCase> review_cases() {
+  const std::string breakdown = R"(w.scn:\d+: field 'step': the (fastslam2|ekf) filter's arithmetic broke down at step \d+)";
+  return {
+      // A1, A2: motion noise or controls inside the format's limits, together too large for a filter's double
+      // precision, aborted on a NaN weight or an indefinite covariance (SIGABRT); now exit 2 naming the step.
+      {"A1", "motion_noise_1e6_fastslam2", simulated_with_odometry_noise("1e6 1e6 1e6 1e6 1e6"),
+       "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --assoc known --particles 5", 2, breakdown},
+      {"A1", "motion_noise_3e5_ekf", simulated_with_odometry_noise("0 0 3e5 0 0"),
+       "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --filter ekf --assoc known", 2, breakdown},
+      {"A2", "controls_1e6_fastslam2", scenario_edit_every(R"(^step ([^ \n]+) .*)", "step $1 0 1e6 0"),
+       kReviewRun + "--assoc known", 2, breakdown},
+      {"A2", "controls_1e6_ekf", scenario_edit_every(R"(^step ([^ \n]+) .*)", "step $1 0 1e6 0"),
+       "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --filter ekf --assoc known", 2, breakdown},
+      {"A2", "velocity_controls_1e3_fastslam2",
+       [](const fs::path& dir) {
+         scenario_edit(R"(^motion odometry .*)", "motion velocity 1e-6 1e-6 0.001 0.0005 0.0004")(dir);
+         scenario_edit_every(R"(^step ([^ \n]+) .*)", "step $1 1e3 0 1e3")(dir);
+       },
+       kReviewRun + "--assoc known", 2, breakdown},
+      // ... while FastSLAM 1.0, whose proposal ignores the measurements, still runs them to a finite end.
+      {"A2", "controls_1e6_fastslam1", scenario_edit_every(R"(^step ([^ \n]+) .*)", "step $1 0 1e6 0"),
+       kReviewRun + "--filter fastslam1 --assoc known", 0, ""},
+  };
+}
+
+class HostileReview : public ::testing::TestWithParam<HostileCase> {};
+
+TEST_P(HostileReview, ExitsCleanlyAndSaysWhere) { expect_exits_cleanly(GetParam()); }
+
+INSTANTIATE_TEST_SUITE_P(Findings, HostileReview, ::testing::ValuesIn(review_cases()),
+                         [](const ::testing::TestParamInfo<HostileCase>& info) {
+                           return info.param.klass + "_" + info.param.name;
+                         });
+
+}  // namespace
+}  // namespace arbor
