@@ -18,6 +18,7 @@ namespace {
 using namespace hostile;  // NOLINT: the shared harness
 
 const std::string kReviewRun = "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --particles 8 ";
+const std::string kMapHeader = "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n";
 
 // Every line of w.scn matching pattern replaced (scenario_edit replaces the first only).
 std::function<void(const fs::path&)> scenario_edit_every(std::string pattern, std::string replacement) {
@@ -58,6 +59,12 @@ std::vector<HostileCase> review_cases() {
       // ... while FastSLAM 1.0, whose proposal ignores the measurements, still runs them to a finite end.
       {"A2", "controls_1e6_fastslam1", scenario_edit_every(R"(^step ([^ \n]+) .*)", "step $1 0 1e6 0"),
        kReviewRun + "--filter fastslam1 --assoc known", 0, ""},
+      // A3: the documented largest prior-map id, 2^30 - 1, aborted the engine; it leaves [2^30, 2^31 - 1] for
+      // the landmarks the filter starts.
+      {"A3", "prior_map_largest_id_fastslam2", file("m.csv", kMapHeader + "1073741823,1,2,0.1,0,0.1,8,,0\n"),
+       kReviewRun + "--prior-map {dir}/m.csv", 0, ""},
+      {"A3", "prior_map_largest_id_ekf", file("m.csv", kMapHeader + "1073741823,1,2,0.1,0,0.1,8,,0\n"),
+       "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --filter ekf --prior-map {dir}/m.csv", 0, ""},
   };
 }
 
