@@ -65,6 +65,12 @@ std::vector<HostileCase> review_cases() {
        kReviewRun + "--prior-map {dir}/m.csv", 0, ""},
       {"A3", "prior_map_largest_id_ekf", file("m.csv", kMapHeader + "1073741823,1,2,0.1,0,0.1,8,,0\n"),
        "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --filter ekf --prior-map {dir}/m.csv", 0, ""},
+      // A4, A5: thread counts TBB's arena crashed on (SIGSEGV) or Ceres allocated for without bound.
+      {"A4", "run_threads_ten_million", no_setup, kReviewRun + "--threads 10000000", 2,
+       R"(--threads: must lie in \[0, 1024\] \(got 10000000\))"},
+      {"A5", "smooth_threads_a_billion", no_setup,
+       "{arbor} smooth --scenario {dir}/w.scn --quiet --out {dir}/out --threads 1000000000", 2,
+       R"(--threads: must lie in \[1, 1024\])"},
   };
 }
 
