@@ -71,6 +71,15 @@ std::vector<HostileCase> review_cases() {
       {"A5", "smooth_threads_a_billion", no_setup,
        "{arbor} smooth --scenario {dir}/w.scn --quiet --out {dir}/out --threads 1000000000", 2,
        R"(--threads: must lie in \[1, 1024\])"},
+      // A6: relocalize's clutter had no cap; 1e9 spurious measurements a scan hung and exhausted memory.
+      {"A6", "relocalize_clutter_a_billion", no_setup, "{arbor} relocalize --landmarks 50 --trials 2 --clutter 1e9", 2,
+       R"(--clutter: must lie in \[0, 500\])"},
+      // B8: a negative standard deviation for the known map ran without a word.
+      {"B8", "relocalize_negative_map_sigma", no_setup, "{arbor} relocalize --landmarks 50 --trials 1 --map-sigma -1", 2,
+       R"(--map-sigma: must lie in \[0, 1000\])"},
+      // C6: relocalize's world had no memory check, and the out-of-memory hint named options it does not have.
+      {"C6", "relocalize_two_billion_landmarks", no_setup, "{arbor} relocalize --landmarks 2000000000 --trials 1", 2,
+       "field '--landmarks': 2000000000 landmarks need at least"},
   };
 }
 
