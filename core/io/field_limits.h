@@ -26,6 +26,11 @@ inline constexpr double kMaxSigma = 1e3;           // any standard deviation [m,
 inline constexpr double kMaxNoiseDensity = 1e6;    // motion noise densities
 inline constexpr double kMaxControl = 1e6;         // |u| of each control field (speeds, angles, odometry)
 inline constexpr double kMaxSignature = 1e6;       // |signature|
+// An Ackermann step's steering angle: below the converters' lock limit, and short of where the axle-centre
+// speed v_e / (1 - tan(steering) * encoder_offset / wheelbase) blows up: that denominator must stay at least
+// kMinSteeringDenominator (the axle at most 10 times the encoder's speed; the ACFR ute at its lock gives 0.31).
+inline constexpr double kMaxSteering = 1.2;             // |steering| [rad]
+inline constexpr double kMinSteeringDenominator = 0.1;
 inline constexpr int kMaxMeasurementsPerScan = 10'000;  // a budget: every strategy's work grows with it
 // Landmark ids (truth ids, a prior map's ids) end at 2^30 - 1: the filter numbers the landmarks it starts after
 // a prior map's largest id, and a 32-bit id must not overflow there.

@@ -37,6 +37,13 @@ std::function<void(const fs::path&)> simulated_with_odometry_noise(std::string d
   };
 }
 
+// An Ackermann scenario whose second step steers at `steering` rad for a vehicle of the given geometry.
+std::string ackermann_scenario(const std::string& vehicle, const std::string& steering) {
+  return "arbor-scenario 2\nmotion ackermann 0.01 2.5e-05 " + vehicle +
+         "\nsensor 20 0 3.141592653589793 0.1 0.008726646259971648 -\ninitial 0 0 0 0 0 0 0\nlandmark 0 5 0\n"
+         "step 0 0 0 0\nscan 1\nz 5 0 - 0\nstep 1 1 " + steering + " 1\nscan 1\nz 5 0 - 0\nend 2\n";
+}
+
 std::vector<HostileCase> review_cases() {
   const std::string breakdown = R"(w.scn:\d+: field 'step': the (fastslam2|ekf) filter's arithmetic broke down at step \d+)";
   return {
@@ -80,6 +87,16 @@ std::vector<HostileCase> review_cases() {
       // C6: relocalize's world had no memory check, and the out-of-memory hint named options it does not have.
       {"C6", "relocalize_two_billion_landmarks", no_setup, "{arbor} relocalize --landmarks 2000000000 --trials 1", 2,
        "field '--landmarks': 2000000000 landmarks need at least"},
+      // B1: steering that makes the axle-centre speed v_e / (1 - tan(steering) H / L) divide by zero gave NaN
+      // trajectories with exit 0 (here L = tan(1), H = 1); the ute beyond its lock made a 20 m jump.
+      {"B1", "ackermann_steering_at_the_pole", file("ack.scn", ackermann_scenario("1.5574077246549023 1 3.78 0.5", "1.0")),
+       "{arbor} run --scenario {dir}/ack.scn --quiet --out {dir}/out --assoc known --particles 5", 2,
+       "ack.scn:9: field 'u2': steering 1 rad is outside the vehicle's range"},
+      {"B1", "ackermann_steering_beyond_the_lock", file("ack.scn", ackermann_scenario("2.83 0.76 3.78 0.5", "1.3086")),
+       "{arbor} run --scenario {dir}/ack.scn --quiet --out {dir}/out --assoc known --particles 5", 2,
+       "ack.scn:9: field 'u2': steering 1.3086 rad is outside the vehicle's range"},
+      {"B1", "ackermann_steering_inside_the_range", file("ack.scn", ackermann_scenario("2.83 0.76 3.78 0.5", "0.5")),
+       "{arbor} run --scenario {dir}/ack.scn --quiet --out {dir}/out --assoc known --particles 5", 0, ""},
   };
 }
 
