@@ -19,6 +19,7 @@ using namespace hostile;  // NOLINT: the shared harness
 
 const std::string kReviewRun = "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --particles 8 ";
 const std::string kMapHeader = "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n";
+const std::string kSmoothRun1 = "{arbor} smooth --scenario {dir}/w.scn --associations {dir}/r1 --quiet --out {dir}/out";
 
 // Every line of w.scn matching pattern replaced (scenario_edit replaces the first only).
 std::function<void(const fs::path&)> scenario_edit_every(std::string pattern, std::string replacement) {
@@ -34,6 +35,17 @@ std::function<void(const fs::path&)> simulated_with_odometry_noise(std::string d
     const auto r = testing::run_command(testing::arbor_binary() + " simulate --landmarks 20 --steps 10 --odometry-noise " +
                                         densities + " --out " + (dir / "w.scn").string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
+  };
+}
+
+// A FastSLAM run of w.scn into dir/r1, then the first match of pattern in r1/name replaced: the run directory
+// `smooth --associations` reads.
+std::function<void(const fs::path&)> run_then_edit(std::string name, std::string pattern, std::string replacement) {
+  return [=](const fs::path& dir) {
+    const auto r = testing::run_command(testing::arbor_binary() + " run --scenario " + (dir / "w.scn").string() +
+                                        " --particles 8 --quiet --out " + (dir / "r1").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    mutate(dir / "r1" / name, dir / "r1" / name, pattern, replacement);
   };
 }
 
@@ -97,6 +109,23 @@ std::vector<HostileCase> review_cases() {
        "ack.scn:9: field 'u2': steering 1.3086 rad is outside the vehicle's range"},
       {"B1", "ackermann_steering_inside_the_range", file("ack.scn", ackermann_scenario("2.83 0.76 3.78 0.5", "0.5")),
        "{arbor} run --scenario {dir}/ack.scn --quiet --out {dir}/out --assoc known --particles 5", 0, ""},
+      // B2: only the first header column was checked, so a map with x and y swapped was read as it stood.
+      {"B2", "prior_map_columns_swapped", file("m.csv", "id,y,x,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n"
+                                                      "0,2,1,0.1,0,0.1,8,,0\n"),
+       kReviewRun + "--prior-map {dir}/m.csv", 2, "m.csv:1: field 'header': expected the map.csv header"},
+      // B3, C5: a signature beyond float range became inf, a variance of 1e300 was taken, and one of 1e-300 was
+      // reported as an indefinite covariance.
+      {"B3", "prior_map_signature_1e300", file("m.csv", kMapHeader + "0,1,2,0.1,0,0.1,8,1e300,0\n"),
+       kReviewRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'signature': 1e\\+300 is outside"},
+      {"B3", "prior_map_variance_1e300", file("m.csv", kMapHeader + "0,1,2,1e300,0,0.1,8,,0\n"),
+       kReviewRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'cov_xx': 1e\\+300 is outside"},
+      {"C5", "prior_map_variance_1e_minus_300", file("m.csv", kMapHeader + "0,1,2,1e-300,0,1e-300,8,,0\n"),
+       kReviewRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'cov_xx': 1e-300 is outside"},
+      // C2: the trajectory `smooth --associations` starts from reached Ceres as inf, or was taken when empty.
+      {"C2", "trajectory_at_1e300", run_then_edit("trajectory.tum", R"(^([^ \n]+) [^ \n]+)", "$1 1e300"), kSmoothRun1, 2,
+       "trajectory.tum:1: field 'x': 1e\\+300 is outside"},
+      {"C2", "trajectory_empty", run_then_edit("trajectory.tum", R"([\s\S]*)", ""), kSmoothRun1, 2,
+       "trajectory.tum: no poses"},
   };
 }
 
