@@ -126,6 +126,15 @@ std::vector<HostileCase> review_cases() {
        "trajectory.tum:1: field 'x': 1e\\+300 is outside"},
       {"C2", "trajectory_empty", run_then_edit("trajectory.tum", R"([\s\S]*)", ""), kSmoothRun1, 2,
        "trajectory.tum: no poses"},
+      // B4, B5: a landmark id past 32 bits was truncated into the smoothed map, and a measurement decided twice
+      // took the last row.
+      {"B4", "associations_id_past_32_bits", run_then_edit("associations.csv", R"(^(\d+),(\d+),-?\d+$)", "$1,$2,4294967296"),
+       kSmoothRun1, 2, "associations.csv:2: field 'landmark': landmark id 4294967296 is outside"},
+      {"B4", "associations_id_2_to_the_31", run_then_edit("associations.csv", R"(^(\d+),(\d+),-?\d+$)", "$1,$2,2147483648"),
+       kSmoothRun1, 2, "associations.csv:2: field 'landmark'"},
+      {"B5", "associations_measurement_decided_twice",
+       run_then_edit("associations.csv", R"(^(\d+,\d+),-?\d+\n)", "$&$1,7\n"), kSmoothRun1, 2,
+       R"(associations.csv:3: field 'measurement': step \d+ measurement 0 already decided at line 2)"},
   };
 }
 
