@@ -57,6 +57,7 @@ std::string ackermann_scenario(const std::string& vehicle, const std::string& st
 }
 
 std::vector<HostileCase> review_cases() {
+  const std::string field_re = R"(:\d+: field ')";
   const std::string breakdown = R"(w.scn:\d+: field 'step': the (fastslam2|ekf) filter's arithmetic broke down at step \d+)";
   return {
       // A1, A2: motion noise or controls inside the format's limits, together too large for a filter's double
@@ -135,6 +136,16 @@ std::vector<HostileCase> review_cases() {
       {"B5", "associations_measurement_decided_twice",
        run_then_edit("associations.csv", R"(^(\d+,\d+),-?\d+\n)", "$&$1,7\n"), kSmoothRun1, 2,
        R"(associations.csv:3: field 'measurement': step \d+ measurement 0 already decided at line 2)"},
+      // C3: an iSAM landmark id past the readers' range was blamed on the converted scenario, and `smooth --isam`
+      // wrote it into a map.csv that --prior-map refuses.
+      {"C3", "convert_isam_landmark_id_2e9",
+       dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+) \d+ )", "$1 2000000000 "),
+       "{arbor} convert --from isam --input {dir}/victoria_park/isam_gtsam/victoria_park.txt --out {dir}/out/i.scn", 2,
+       "victoria_park.txt" + field_re + "l': landmark id 2000000000 is outside"},
+      {"C3", "smooth_isam_landmark_id_2e9",
+       dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+) \d+ )", "$1 2000000000 "),
+       "{arbor} smooth --isam {dir}/victoria_park/isam_gtsam/victoria_park.txt --out {dir}/out", 2,
+       "victoria_park.txt" + field_re + "l'"},
   };
 }
 
