@@ -20,6 +20,7 @@ using namespace hostile;  // NOLINT: the shared harness
 const std::string kReviewRun = "{arbor} run --scenario {dir}/w.scn --quiet --out {dir}/out --particles 8 ";
 const std::string kMapHeader = "id,x,y,cov_xx,cov_xy,cov_yy,log_odds,signature,truth_label\n";
 const std::string kSmoothRun1 = "{arbor} smooth --scenario {dir}/w.scn --associations {dir}/r1 --quiet --out {dir}/out";
+const std::string kByteOrderMark = "\xEF\xBB\xBF";
 
 // Every line of w.scn matching pattern replaced (scenario_edit replaces the first only).
 std::function<void(const fs::path&)> scenario_edit_every(std::string pattern, std::string replacement) {
@@ -47,6 +48,11 @@ std::function<void(const fs::path&)> run_then_edit(std::string name, std::string
     ASSERT_EQ(r.exit_code, 0) << r.output;
     mutate(dir / "r1" / name, dir / "r1" / name, pattern, replacement);
   };
+}
+
+// A file with a UTF-8 byte-order mark put before its first line.
+std::function<void(const fs::path&)> with_byte_order_mark(std::string name) {
+  return [=](const fs::path& dir) { write_text(dir / name, kByteOrderMark + testing::read_file((dir / name).string())); };
 }
 
 // An Ackermann scenario whose second step steers at `steering` rad for a vehicle of the given geometry.
@@ -146,6 +152,11 @@ std::vector<HostileCase> review_cases() {
        dataset_edit("victoria_park", "isam_gtsam/victoria_park.txt", R"(^(LANDMARK \d+) \d+ )", "$1 2000000000 "),
        "{arbor} smooth --isam {dir}/victoria_park/isam_gtsam/victoria_park.txt --out {dir}/out", 2,
        "victoria_park.txt" + field_re + "l'"},
+      // C4: a UTF-8 byte-order mark made every reader report a different, wrong problem; it is skipped.
+      {"C4", "scenario_with_a_byte_order_mark", with_byte_order_mark("w.scn"), kReviewRun, 0, ""},
+      {"C4", "prior_map_with_a_byte_order_mark",
+       [](const fs::path& dir) { write_text(dir / "m.csv", kByteOrderMark + kMapHeader + "0,1,2,0.1,0,0.1,8,,0\n"); },
+       kReviewRun + "--prior-map {dir}/m.csv", 0, ""},
   };
 }
 
