@@ -157,6 +157,16 @@ std::vector<HostileCase> review_cases() {
       {"C4", "prior_map_with_a_byte_order_mark",
        [](const fs::path& dir) { write_text(dir / "m.csv", kByteOrderMark + kMapHeader + "0,1,2,0.1,0,0.1,8,,0\n"); },
        kReviewRun + "--prior-map {dir}/m.csv", 0, ""},
+      // B7: the problem generator wrote NaN and inf problems, and took a negative standard deviation.
+      {"B7", "generate_density_zero", no_setup,
+       "{arbor} associate --generate --landmarks 5 --observations 2 --density 0 --out {dir}/p.txt", 2,
+       R"(--density: must lie in \[1e-06, 1e\+06\] \(got 0\))"},
+      {"B7", "generate_bearing_sigma_1e300", no_setup,
+       "{arbor} associate --generate --landmarks 5 --observations 2 --bearing-sigma 1e300 --out {dir}/p.txt", 2,
+       "--bearing-sigma: must lie in"},
+      {"B7", "generate_pose_sigma_negative", no_setup,
+       "{arbor} associate --generate --landmarks 5 --observations 2 --pose-sigma -1 0 0 --out {dir}/p.txt", 2,
+       "--pose-sigma: must lie in"},
   };
 }
 
