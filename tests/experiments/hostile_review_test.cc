@@ -167,6 +167,27 @@ std::vector<HostileCase> review_cases() {
       {"B7", "generate_pose_sigma_negative", no_setup,
        "{arbor} associate --generate --landmarks 5 --observations 2 --pose-sigma -1 0 0 --out {dir}/p.txt", 2,
        "--pose-sigma: must lie in"},
+      // B9: a GPS track too short for a start heading set it to 0, an empty one put the start at the origin,
+      // and header-only laser files made a scenario of 0 scans, each with exit 0.
+      converted_dataset_edit("B9", "car_park_gps_one_fix", "acfr_car_park", "csv/gps.csv",
+                             R"(^(time_s[^\n]*\n[^\n]*\n)[\s\S]*)", "$1", "gps.csv: too few fixes for a start heading"),
+      converted_dataset_edit("B9", "car_park_gps_header_only", "acfr_car_park", "csv/gps.csv",
+                             R"(^(time_s[^\n]*\n)[\s\S]*)", "$1", "gps.csv: no GPS fix at the start"),
+      {"B9", "car_park_laser_header_only",
+       [](const fs::path& dir) {
+         fs::copy(kShippedData + "acfr_car_park", dir / "acfr_car_park", fs::copy_options::recursive);
+         for (const char* name : {"laser_ranges.csv", "laser_intensity.csv"}) {
+           const fs::path path = dir / "acfr_car_park/csv" / name;
+           const std::string text = testing::read_file(path.string());  // too long for std::regex's recursion
+           write_text(path, text.substr(0, text.find('\n') + 1));
+         }
+       },
+       "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn", 2,
+       "laser_ranges.csv: no laser scans"},
+      {"B9", "car_park_estimate_noise_from_nothing",
+       dataset_edit("acfr_car_park", "csv/gps.csv", R"(^(time_s[^\n]*\n(?:[^\n]*\n){7})[\s\S]*)", "$1"),
+       "{arbor} convert --from acfr-car-park --input {dir}/acfr_car_park --out {dir}/out/c.scn --estimate-noise", 2,
+       "field '--estimate-noise': .* gives nothing to estimate the measurement noise from"},
   };
 }
 
