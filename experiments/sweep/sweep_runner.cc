@@ -263,17 +263,10 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   // Resume: the rows already recorded (last row per key wins, for --retry-failed) decide what is skipped.
   const std::string jsonl = out + "/" + kResultsJsonl;
   drop_partial_last_line(jsonl);
-  std::vector<ResultRow> rows = read_result_rows(jsonl);
-  std::map<std::string, std::size_t> last_of_key;
-  for (std::size_t i = 0; i < rows.size(); ++i) last_of_key[rows[i]["key"].get<std::string>()] = i;
-  std::vector<ResultRow> kept;
+  const std::vector<ResultRow> kept = last_row_of_each_key(read_result_rows(jsonl));
   std::set<std::string> done;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const std::string key = rows[i]["key"].get<std::string>();
-    if (last_of_key[key] != i) continue;
-    if (!options.retry_failed || rows[i].value("status", std::string()) == "ok") done.insert(key);
-    kept.push_back(std::move(rows[i]));
-  }
+  for (const ResultRow& row : kept)
+    if (!options.retry_failed || row.value("status", std::string()) == "ok") done.insert(row["key"].get<std::string>());
   write_result_files(out, kept, columns);  // the CSV always mirrors the JSONL, even after a kill between the two
 
   std::vector<RunParams> pending;
@@ -385,6 +378,9 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   });
   summary.interrupted = !completed;
   restore_signals();
+  // A retried run appended its new row after its failed one; whoever reads results.csv directly counted both
+  // (hostile B10). Keep the newest row of each key, as the next start would.
+  if (options.retry_failed) write_result_files(out, last_row_of_each_key(read_result_rows(jsonl)), columns);
   return summary;
 }
 

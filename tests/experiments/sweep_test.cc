@@ -210,6 +210,25 @@ TEST_F(SweepEndToEnd, ASecondProcessIntoTheSameOutIsRefused) {
       << read_text(dir / "free.log");
 }
 
+// --retry-failed appended each retried run's ok row after its failed one, and results.csv kept both until the
+// next start: whoever read it directly counted every retried run twice (hostile B10).
+TEST_F(SweepEndToEnd, RetriedRunsReplaceTheirFailedRows) {
+  ScratchDir dir("retry");
+  write_text(dir / "w.scn", "not a scenario\n");  // every run fails on it
+  write_text(dir / "d.toml", "[scenarios]\ndatasets = [\"w.scn\"]\n[grid]\nfilter = \"fastslam1\"\nmap = \"naive\"\n"
+                             "assoc = \"known\"\nparticles = 3\nseed = { from = 1, to = 2 }\nthreads = 1\n");
+  const std::vector<std::string> sweep{binary_, "sweep", dir / "d.toml", "--out", dir / "out"};
+  run_to_end(sweep, dir / "first.log");
+  ASSERT_EQ(rows_of(dir / "out").size(), 2u) << read_text(dir / "first.log");
+  ASSERT_EQ(run_to_end({binary_, "simulate", "--landmarks", "20", "--steps", "10", "--out", dir / "w.scn"}, dir / "s.log"), 0);
+  std::vector<std::string> retry = sweep;
+  retry.push_back("--retry-failed");
+  ASSERT_EQ(run_to_end(retry, dir / "retry.log"), 0) << read_text(dir / "retry.log");
+  const auto rows = rows_of(dir / "out");  // also checks that results.csv holds as many rows as results.jsonl
+  ASSERT_EQ(rows.size(), 2u) << read_text(dir / "out/results.csv");
+  for (const auto& r : rows) EXPECT_NE(r.find("status=\"ok\""), std::string::npos) << r;
+}
+
 TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
   ScratchDir dir("malformed");
   std::string bad = tiny_spec();
