@@ -84,7 +84,10 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
       first = manifest;
       first_dir = dir;
       if (std::filesystem::exists(dir + "/spec.toml"))
-        for (const RunParams& run : read_sweep_spec(dir + "/spec.toml").runs) grid.insert(run.key());
+        // The grid's keys only: the copy's relative dataset paths resolve from DIR, not from where the spec
+        // was, and a dataset moved since must not block the merge (hostile C1).
+        for (const RunParams& run : read_sweep_spec(dir + "/spec.toml", /*inputs_must_exist=*/false).runs)
+          grid.insert(run.key());
     } else if (manifest->spec_hash != first->spec_hash || manifest->columns != first->columns) {
       throw InputError(dir + "/" + kSweepManifest, 0, "spec_hash",
                        fmt::format("comes from another spec (hash {}) than {} (hash {}); refusing to merge different grids",

@@ -327,7 +327,7 @@ std::string RunParams::key() const {
 
 bool operator<(const RunParams& a, const RunParams& b) { return tie(a) < tie(b); }
 
-SweepSpec read_sweep_spec(const std::string& path) {
+SweepSpec read_sweep_spec(const std::string& path, bool inputs_must_exist) {
   SpecReader in(path);
   if (!std::filesystem::exists(path)) throw InputError(path, 0, "", "sweep spec not found");
   toml::table root;
@@ -382,7 +382,7 @@ SweepSpec read_sweep_spec(const std::string& path) {
       RunParams p;
       p.dataset = in.names(item, "scenarios.datasets", {}).front();
       const std::filesystem::path resolved = std::filesystem::path(p.dataset).is_absolute() ? std::filesystem::path(p.dataset) : spec_dir / p.dataset;
-      if (!std::filesystem::is_regular_file(resolved))
+      if (inputs_must_exist && !std::filesystem::is_regular_file(resolved))
         in.fail(line_of(item), "scenarios.datasets", fmt::format("dataset '{}' not found (looked for {})", p.dataset, resolved.string()));
       p.dataset_path = resolved.lexically_normal().string();
       bases.push_back(p);
@@ -459,7 +459,10 @@ SweepSpec read_sweep_spec(const std::string& path) {
     const std::string field = "grid." + name;
     std::vector<std::pair<std::string, std::string>> values;
     for (const auto& [line, value] : in.option_values(*node, field)) {
-      if (const std::string error = cli::run_option_error(name, value); !error.empty()) in.fail(line, field, error);
+      // --prior-map's check is that the file exists (from the working directory): skipped with the datasets'.
+      const bool file_check_only = name == "prior-map" && !inputs_must_exist;
+      if (const std::string error = file_check_only ? std::string() : cli::run_option_error(name, value); !error.empty())
+        in.fail(line, field, error);
       values.emplace_back(name, value);
     }
     std::vector<std::vector<std::pair<std::string, std::string>>> grown;

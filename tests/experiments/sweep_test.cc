@@ -229,6 +229,27 @@ TEST_F(SweepEndToEnd, RetriedRunsReplaceTheirFailedRows) {
   for (const auto& r : rows) EXPECT_NE(r.find("status=\"ok\""), std::string::npos) << r;
 }
 
+// Merge re-read each shard's copy of the spec, whose relative dataset path resolved from the shard's directory:
+// the documented Slurm layout (--out .../shard-N) could not merge a dataset sweep, nor could any sweep whose
+// dataset was moved since (hostile C1). Merge needs the grid's keys, not the datasets.
+TEST_F(SweepEndToEnd, DatasetShardsMergeWhereverTheirDatasetIs) {
+  ScratchDir dir("dataset_shards");
+  std::filesystem::create_directories(dir / "specs");
+  std::filesystem::create_directories(dir / "data");
+  ASSERT_EQ(run_to_end({binary_, "simulate", "--landmarks", "20", "--steps", "10", "--out", dir / "data/w.scn"}, dir / "s.log"), 0);
+  write_text(dir / "specs/d.toml", "[scenarios]\ndatasets = [\"../data/w.scn\"]\n[grid]\nfilter = \"fastslam1\"\n"
+                                   "map = \"naive\"\nassoc = \"known\"\nparticles = 3\nseed = { from = 1, to = 2 }\n"
+                                   "threads = 1\n");
+  for (int i = 0; i < 2; ++i)
+    ASSERT_EQ(run_to_end({binary_, "sweep", dir / "specs/d.toml", "--out", dir / fmt::format("shards/sh{}", i), "--shard",
+                          fmt::format("{}/2", i)}, dir / "shard.log"), 0)
+        << read_text(dir / "shard.log");
+  std::filesystem::remove(dir / "data/w.scn");
+  ASSERT_EQ(run_to_end({binary_, "merge", dir / "shards/sh0", dir / "shards/sh1", "--out", dir / "merged"}, dir / "m.log"), 0)
+      << read_text(dir / "m.log");
+  EXPECT_EQ(rows_of(dir / "merged").size(), 2u);
+}
+
 TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
   ScratchDir dir("malformed");
   std::string bad = tiny_spec();
