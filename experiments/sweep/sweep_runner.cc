@@ -296,7 +296,8 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
              spec.name, mine.size(), shard, spec.runs.size(), summary.already_done, pending.size(), jobs);
 
   // Phase 1: the simulated scenarios the pending runs need, cached by their parameters in DIR/scenarios/.
-  std::map<std::string, std::string> scenario_error;  // scenario name -> why it could not be made
+  // Scenario name -> the status and error of the runs that need it, where it could not be made.
+  std::map<std::string, std::pair<std::string, std::string>> scenario_error;
   {
     std::deque<Job> sims;
     std::set<std::string> queued;
@@ -311,8 +312,12 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
       const std::string log = out + "/logs/simulate-" + name + ".log";
       sims.push_back({name, simulate_command(run, exe, file), log, [&, name, file, log](const ChildExit& e, double) {
                         ++finished;
-                        if (!e.ok() || !fs::exists(file))
-                          scenario_error[name] = fmt::format("arbor simulate failed ({}): {}", e.describe(), last_log_line(log));
+                        // A simulation the time limit stopped is a timeout, as a run would be, not "killed by
+                        // signal 9" (hostile C6).
+                        if (e.timed_out)
+                          scenario_error[name] = {"timeout", fmt::format("arbor simulate stopped after the {} s limit", spec.timeout_s)};
+                        else if (!e.ok() || !fs::exists(file))
+                          scenario_error[name] = {"failed", fmt::format("arbor simulate failed ({}): {}", e.describe(), last_log_line(log))};
                       }});
     }
     if (!sims.empty()) {
@@ -337,7 +342,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     const std::string log = out + "/logs/" + key + ".log";
     const std::string run_dir = out + "/runs/" + key;
     if (auto it = scenario_error.find(run.scenario_name()); !run.scenario_name().empty() && it != scenario_error.end()) {
-      append_result_row(out, make_row(run, columns, spec.metrics, "failed", it->second, nullptr, nullptr, -1), columns);
+      append_result_row(out, make_row(run, columns, spec.metrics, it->second.first, it->second.second, nullptr, nullptr, -1), columns);
       ++summary.finished;
       ++summary.failed;
       continue;

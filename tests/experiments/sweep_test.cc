@@ -250,6 +250,21 @@ TEST_F(SweepEndToEnd, DatasetShardsMergeWhereverTheirDatasetIs) {
   EXPECT_EQ(rows_of(dir / "merged").size(), 2u);
 }
 
+// A simulation the sweep's time limit stopped recorded its runs as "failed ... killed by signal 9" rather than
+// as a timeout (hostile C6). A million-step world cannot be simulated in the 10 ms the spec allows.
+TEST_F(SweepEndToEnd, ASimulationPastTheTimeLimitIsATimeout) {
+  ScratchDir dir("simulate_timeout");
+  write_text(dir / "t.toml", "[sweep]\ntimeout_s = 0.01\n[scenarios]\nworld = \"uniform\"\nlandmarks = 1000\n"
+                             "steps = 1000000\nclutter = 0.0\n[grid]\nfilter = \"fastslam1\"\nmap = \"naive\"\n"
+                             "assoc = \"known\"\nparticles = 3\nseed = 1\nthreads = 1\n");
+  run_to_end({binary_, "sweep", dir / "t.toml", "--out", dir / "out"}, dir / "t.log");
+  const auto rows = read_result_rows(dir / "out/results.jsonl");
+  ASSERT_EQ(rows.size(), 1u) << read_text(dir / "t.log");
+  EXPECT_EQ(rows[0]["status"], "timeout") << rows[0].dump();
+  EXPECT_NE(rows[0]["error"].get<std::string>().find("arbor simulate stopped after the 0.01 s limit"), std::string::npos)
+      << rows[0].dump();
+}
+
 TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
   ScratchDir dir("malformed");
   std::string bad = tiny_spec();
