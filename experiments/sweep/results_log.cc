@@ -125,6 +125,12 @@ std::vector<ResultRow> last_row_of_each_key(std::vector<ResultRow> rows) {
   return kept;
 }
 
+bool has_ok_row_of_dataset(const std::string& dir, const std::string& dataset) {
+  for (const ResultRow& row : read_result_rows(dir + "/" + kResultsJsonl))
+    if (row.value("status", std::string()) == "ok" && row.contains("dataset") && row["dataset"] == dataset) return true;
+  return false;
+}
+
 void drop_partial_last_line(const std::string& jsonl_path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(jsonl_path, ec);

@@ -92,6 +92,15 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
       throw InputError(dir + "/" + kSweepManifest, 0, "spec_hash",
                        fmt::format("comes from another spec (hash {}) than {} (hash {}); refusing to merge different grids",
                                    manifest->spec_hash, first_dir, first->spec_hash));
+    } else if (const auto dataset = changed_dataset(*first, *manifest);
+               dataset && has_ok_row_of_dataset(first_dir, *dataset) && has_ok_row_of_dataset(dir, *dataset)) {
+      // One spec, but a dataset regenerated between the shards: their results share keys and differ in meaning.
+      throw InputError(dir + "/" + kSweepManifest, 0, "datasets",
+                       fmt::format("dataset '{}' had other content here than in {} (fingerprint {} against {}); "
+                                   "refusing to merge rows of two versions of it",
+                                   *dataset, first_dir, manifest->datasets.at(*dataset), first->datasets.at(*dataset)));
+    } else {
+      first->datasets.insert(manifest->datasets.begin(), manifest->datasets.end());  // those the first lacks
     }
     fold(dir);
     ++summary.inputs;
@@ -101,6 +110,11 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
   if (const auto existing = read_manifest(out)) {
     if (existing->spec_hash != first->spec_hash)
       throw InputError(out + "/" + kSweepManifest, 0, "spec_hash", "the output directory holds another sweep");
+    if (const auto dataset = changed_dataset(*existing, *first); dataset && has_ok_row_of_dataset(out, *dataset))
+      throw InputError(out + "/" + kSweepManifest, 0, "datasets",
+                       fmt::format("dataset '{}' had other content in the output directory's rows; refusing to merge "
+                                   "rows of two versions of it", *dataset));
+    first->datasets.insert(existing->datasets.begin(), existing->datasets.end());
     // Merging into an earlier merge (or a shard) of the same spec adds to its rows; they used to be dropped.
     fold(out);
   }

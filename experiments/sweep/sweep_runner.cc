@@ -243,6 +243,10 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   // then the directory's manifest must match this spec and shard.
   fs::create_directories(out);
   const DirectoryLock lock(out);
+  SweepManifest manifest{spec.hash, spec.name, shard, summary.grid_runs, columns};
+  for (const RunParams& run : spec.runs)
+    if (!run.dataset.empty() && !manifest.datasets.count(run.dataset))
+      manifest.datasets[run.dataset] = dataset_fingerprint(run.dataset_path);
   if (const auto existing = read_manifest(out)) {
     if (existing->spec_hash != spec.hash)
       throw InputError(out + "/" + kSweepManifest, 0, "spec_hash",
@@ -251,8 +255,14 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     if (existing->shard != shard)
       throw InputError(out + "/" + kSweepManifest, 0, "shard",
                        fmt::format("this directory holds shard {}, not {}", existing->shard, shard));
+    // Failed rows hold no result to mix (a broken dataset fixed, then --retry-failed): only finished ones count.
+    if (const auto dataset = changed_dataset(*existing, manifest); dataset && has_ok_row_of_dataset(out, *dataset))
+      throw InputError(out + "/" + kSweepManifest, 0, "datasets",
+                       fmt::format("dataset '{}' has changed since this directory's runs (fingerprint {}, now {}): its "
+                                   "rows would mix two versions of it; use a new --out",
+                                   *dataset, existing->datasets.at(*dataset), manifest.datasets.at(*dataset)));
   }
-  write_manifest(out, {spec.hash, spec.name, shard, summary.grid_runs, columns});
+  write_manifest(out, manifest);
   {
     std::ifstream in(spec.path);
     std::stringstream text;

@@ -250,6 +250,36 @@ TEST_F(SweepEndToEnd, DatasetShardsMergeWhereverTheirDatasetIs) {
   EXPECT_EQ(rows_of(dir / "merged").size(), 2u);
 }
 
+// The run keys name a dataset by its path: a dataset regenerated between two shards (or before a resume) mixed
+// rows of two versions under one key, and merge counted "4 of 4 grid runs present" (hostile B6). sweep.json
+// records each dataset's fingerprint; the resume and the merge compare them.
+TEST_F(SweepEndToEnd, ADatasetChangedBetweenShardsIsRefused) {
+  ScratchDir dir("dataset_changed");
+  const auto simulate = [&](const char* seed) {
+    return run_to_end({binary_, "simulate", "--landmarks", "20", "--steps", "10", "--seed", seed, "--out", dir / "w.scn"},
+                      dir / "s.log");
+  };
+  ASSERT_EQ(simulate("1"), 0);
+  write_text(dir / "d.toml", "[scenarios]\ndatasets = [\"w.scn\"]\n[grid]\nfilter = \"fastslam1\"\nmap = \"naive\"\n"
+                             "assoc = \"known\"\nparticles = 3\nseed = { from = 1, to = 2 }\nthreads = 1\n");
+  const auto shard = [&](int i) {
+    return run_to_end({binary_, "sweep", dir / "d.toml", "--out", dir / fmt::format("sh{}", i), "--shard",
+                       fmt::format("{}/2", i)}, dir / fmt::format("sh{}.log", i));
+  };
+  ASSERT_EQ(shard(0), 0) << read_text(dir / "sh0.log");
+  ASSERT_EQ(simulate("9"), 0);  // the dataset is regenerated
+  ASSERT_EQ(shard(1), 0) << read_text(dir / "sh1.log");
+  EXPECT_EQ(run_to_end({binary_, "merge", dir / "sh0", dir / "sh1", "--out", dir / "merged"}, dir / "m.log"), 2);
+  EXPECT_NE(read_text(dir / "m.log").find("field 'datasets': dataset 'w.scn' had other content"), std::string::npos)
+      << read_text(dir / "m.log");
+  // Resuming the first shard with the new file is refused the same way; with the old one back it is not.
+  EXPECT_EQ(shard(0), 2);
+  EXPECT_NE(read_text(dir / "sh0.log").find("dataset 'w.scn' has changed since this directory's runs"), std::string::npos)
+      << read_text(dir / "sh0.log");
+  ASSERT_EQ(simulate("1"), 0);
+  EXPECT_EQ(shard(0), 0) << read_text(dir / "sh0.log");
+}
+
 // A simulation the sweep's time limit stopped recorded its runs as "failed ... killed by signal 9" rather than
 // as a timeout (hostile C6). A million-step world cannot be simulated in the 10 ms the spec allows.
 TEST_F(SweepEndToEnd, ASimulationPastTheTimeLimitIsATimeout) {
