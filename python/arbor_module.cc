@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/engine/filter.h"
+#include "core/engine/numerical_breakdown.h"
 #include "core/io/build_info.h"
 #include "core/io/field_limits.h"
 #include "core/io/input_error.h"
@@ -393,8 +394,15 @@ class PyFilter {
     }
     if (time_s < last_time_s_) throw InputError("Filter.step", 0, "time", "times must not go backwards");
     last_time_s_ = time_s;
-    py::gil_scoped_release release;
-    filter_->step(s);
+    try {
+      py::gil_scoped_release release;
+      filter_->step(s);
+    } catch (const NumericalBreakdown& e) {
+      // As `arbor run` reports it (experiments/run/fastslam_run.cc): the caller's figures are the cause.
+      throw InputError("Filter.step", 0, "step",
+                       fmt::format("the filter's arithmetic broke down: {}; the motion noise or controls are too large "
+                                   "for it", e.what()));
+    }
   }
 
   py::tuple particles() const {

@@ -66,7 +66,8 @@ class EkfSlam {
       map_.insert(lm);
       next_id_ = std::max<std::int64_t>(next_id_, std::int64_t{lm.id} + 1);
     }
-    ARBOR_CHECK(next_id_ <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks",
+    // The largest id the readers allow, 2^30 - 1, included: new landmarks take [2^30, 2^31 - 1].
+    ARBOR_CHECK(next_id_ - 1 <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks",
                 next_id_ - 1);
   }
 

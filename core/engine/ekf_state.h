@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "core/check.h"
+#include "core/engine/numerical_breakdown.h"
 #include "core/math/angles.h"
 #include "core/math/covariance_floor.h"
 #include "core/math/eigen_types.h"
@@ -115,7 +116,9 @@ class EkfState {
       nu.segment<2>(2 * a) = o.innovation;
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(S);
-    ARBOR_CHECK(llt.info() == Eigen::Success, "EKF innovation covariance of {} measurements is not positive definite", k);
+    if (llt.info() != Eigen::Success)  // huge motion noise or controls within the scenario limits (see the header)
+      throw NumericalBreakdown(
+          fmt::format("EKF innovation covariance of {} measurements is not positive definite", k));
     mean_.head(n) += PHt * llt.solve(nu);
     mean_(2) = wrap_angle(mean_(2));
     const Eigen::MatrixXd Vt = llt.matrixL().solve(PHt.transpose());  // L^-1 H P, 2k x n

@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 
 #include "core/check.h"
+#include "core/engine/numerical_breakdown.h"
 #include "core/engine/measurement_likelihood.h"
 #include "core/math/covariance_floor.h"
 #include "core/math/eigen_types.h"
@@ -47,7 +48,8 @@ class LandmarkEkf {
     *cov = I_KH * *cov * I_KH.transpose() + K * R * K.transpose();
     *cov = 0.5 * (*cov + cov->transpose());
     floor_covariance(cov);
-    ARBOR_CHECK((*cov)(0, 0) > 0.0 && cov->determinant() > 0.0, "landmark {} covariance lost definiteness", id);
+    if (!((*cov)(0, 0) > 0.0 && cov->determinant() > 0.0))  // huge motion noise or controls (see the header)
+      throw NumericalBreakdown(fmt::format("landmark {} covariance lost definiteness", id));
     return ll;
   }
 

@@ -81,8 +81,9 @@ template <class Map, class Particle>
 void start_from_prior_map(const Map& map, std::vector<Particle>* particles) {
   std::int64_t next = 0;
   map.for_each([&](const Landmark& lm) { next = std::max<std::int64_t>(next, std::int64_t{lm.id} + 1); });
-  // The readers keep ids to 2^30 - 1 (core/io/field_limits.h); the filter numbers its own landmarks above.
-  ARBOR_CHECK(next <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks", next - 1);
+  // The readers keep ids to 2^30 - 1 (core/io/field_limits.h), the largest included; the filter numbers its own
+  // landmarks above, in [2^30, 2^31 - 1].
+  ARBOR_CHECK(next - 1 <= std::numeric_limits<LandmarkId>::max() / 2, "prior map landmark id {} leaves no ids for new landmarks", next - 1);
   for (auto& p : *particles) {
     p.map = map;
     p.next_id = next;

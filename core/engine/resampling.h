@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/check.h"
+#include "core/engine/numerical_breakdown.h"
 #include "core/math/eigen_types.h"
 
 namespace arbor {
@@ -38,7 +39,9 @@ double normalize_particle_weights(std::vector<Particle>* particles, std::vector<
   std::vector<double> log_weights(particles->size());
   for (std::size_t i = 0; i < particles->size(); ++i) {
     log_weights[i] = (*particles)[i].log_weight;
-    ARBOR_CHECK(!std::isnan(log_weights[i]), "NaN weight for particle {} at step {}", i, step);
+    // Not an abort: huge motion noise or controls within the scenario limits can swamp the weights (A1, A2).
+    if (std::isnan(log_weights[i]))
+      throw NumericalBreakdown(fmt::format("NaN weight for particle {} at step {}", i, step));
   }
   const double n_eff = normalize_log_weights(log_weights, weights);
   for (std::size_t i = 0; i < particles->size(); ++i) (*particles)[i].log_weight = std::log((*weights)[i]);

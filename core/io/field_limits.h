@@ -18,6 +18,9 @@ namespace arbor {
 // denormal sigma makes a singular covariance; a control of 1e300 m overflows when squared).
 namespace scenario_limits {
 inline constexpr double kMaxCoordinate = 1e9;      // |x|, |y| of poses, landmarks and GPS fixes [m]
+// |x|, |y| of an estimated pose (a run's trajectory.tum): a diverged filter can drift past kMaxCoordinate on
+// controls at their limit, and its output must stay readable; squares stay far inside double range.
+inline constexpr double kMaxEstimateCoordinate = 1e15;
 inline constexpr double kMaxTime = 1e12;           // |t| [s]
 inline constexpr double kMaxRange = 1e6;           // measured ranges and sensor ranges [m]
 inline constexpr double kMinSigmaRange = 1e-6;     // [m]
@@ -26,7 +29,16 @@ inline constexpr double kMaxSigma = 1e3;           // any standard deviation [m,
 inline constexpr double kMaxNoiseDensity = 1e6;    // motion noise densities
 inline constexpr double kMaxControl = 1e6;         // |u| of each control field (speeds, angles, odometry)
 inline constexpr double kMaxSignature = 1e6;       // |signature|
+// An Ackermann step's steering angle: below the converters' lock limit, and short of where the axle-centre
+// speed v_e / (1 - tan(steering) * encoder_offset / wheelbase) blows up: that denominator must stay at least
+// kMinSteeringDenominator (the axle at most 10 times the encoder's speed; the ACFR ute at its lock gives 0.31).
+inline constexpr double kMaxSteering = 1.2;             // |steering| [rad]
+inline constexpr double kMinSteeringDenominator = 0.1;
 inline constexpr int kMaxMeasurementsPerScan = 10'000;  // a budget: every strategy's work grows with it
+// A map.csv landmark's variances (cov_xx, cov_yy) and |cov_xy|: far beyond what any filter writes, and inside
+// the range where their products (the determinant, the engine's H P H^T) neither overflow nor underflow to 0.
+inline constexpr double kMinMapVariance = 1e-100;
+inline constexpr double kMaxMapVariance = 1e100;
 // Landmark ids (truth ids, a prior map's ids) end at 2^30 - 1: the filter numbers the landmarks it starts after
 // a prior map's largest id, and a 32-bit id must not overflow there.
 inline constexpr std::int32_t kMaxLandmarkId = (1 << 30) - 1;

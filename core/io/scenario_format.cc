@@ -68,6 +68,19 @@ void read_motion(const TextReader& in, MotionModel* motion) {
   }
 }
 
+// An Ackermann control's steering (field u2) within the vehicle's range: the converters' lock limit, and a
+// finite axle-centre speed (at 1 - tan(steering) H / L = 0 the model divides by zero and the run was NaN).
+void check_steering(const TextReader& in, double steering, const AckermannVehicle& car) {
+  if (std::abs(steering) >= lim::kMaxSteering)
+    in.fail("u2", fmt::format("steering {} rad is outside the vehicle's range (|steering| < {} rad)", steering,
+                              lim::kMaxSteering));
+  const double denominator = 1.0 - std::tan(steering) * car.encoder_offset_m / car.wheelbase_m;
+  if (!(denominator >= lim::kMinSteeringDenominator))
+    in.fail("u2", fmt::format("steering {} rad is outside the vehicle's range: 1 - tan(steering) * encoder_offset / "
+                              "wheelbase = {:.3g}, below {} (the axle-centre speed divides by it)",
+                              steering, denominator, lim::kMinSteeringDenominator));
+}
+
 }  // namespace
 
 Scenario read_scenario(const std::string& path) {
@@ -135,6 +148,8 @@ Scenario read_scenario(const std::string& path) {
       last_time = step.time_s;
       step.control = {control_field(in, 2, "u1"), control_field(in, 3, "u2"), control_field(in, 4, "u3")};
       if (s.motion.kind != MotionModelKind::kOdometry && step.control[2] < 0.0) in.fail("u3", "dt must not be negative");
+      if (s.motion.kind == MotionModelKind::kAckermann) check_steering(in, step.control[1], s.motion.vehicle);
+      step.source_line = in.line_number();
       s.steps.push_back(std::move(step));
     } else if (kind == "truth") {
       in.expect_fields(4, 4, "truth");

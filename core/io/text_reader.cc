@@ -21,6 +21,9 @@ bool TextReader::next() {
   while (std::getline(in_, line_)) {
     ++line_number_;
     if (!line_.empty() && line_.back() == '\r') line_.pop_back();
+    // A UTF-8 byte-order mark (some Windows editors write one) is no part of the first field; kept, it made
+    // every reader report a different, wrong problem with a header that looked right (hostile C4).
+    if (line_number_ == 1 && line_.starts_with("\xEF\xBB\xBF")) line_.erase(0, 3);
     fields_.clear();
     std::string_view rest(line_);
     const auto is_separator = [&](char c) {

@@ -37,6 +37,9 @@ struct ScenarioStep {
   Vec3 control = Vec3::Zero();
   std::optional<Pose2> truth_pose;  // ground truth at time_s, where known
   bool has_scan = false;            // a scan with no measurement still gives negative evidence
+  // The scenario file's line of the 'step' record (0: not read from a file), for an error about this step that
+  // only the run can see (core/engine/numerical_breakdown.h).
+  int source_line = 0;
   std::vector<Measurement> measurements;
 };
 

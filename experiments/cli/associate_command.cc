@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include "core/io/field_limits.h"
 #include "core/io/input_error.h"
 #include "core/metrics/association_score.h"
 #include "experiments/cli/commands.h"
@@ -126,11 +127,22 @@ void add_associate_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--seed", args->gen.seed, "Generator: random seed")
       ->check(unsigned_number())
       ->capture_default_str();
-  cmd->add_option("--density", args->gen.density, "Generator: landmarks per m^2")->capture_default_str();
-  cmd->add_option("--range-sigma", args->gen.range_sigma, "Generator: range noise [m]")->capture_default_str();
-  cmd->add_option("--bearing-sigma", args->gen.bearing_sigma, "Generator: bearing noise [rad]")->capture_default_str();
+  // The generator's figures within the scenario limits (core/io/field_limits.h), so that it writes no problem
+  // its own reader refuses: density 0 made every coordinate NaN, a sigma of 1e300 an infinite covariance.
+  namespace lim = scenario_limits;
+  cmd->add_option("--density", args->gen.density, "Generator: landmarks per m^2")
+      ->check(within(1e-6, 1e6))  // the world's side sqrt(N / density) within [1 mm, 71 km]
+      ->capture_default_str();
+  cmd->add_option("--range-sigma", args->gen.range_sigma, "Generator: range noise [m]")
+      ->check(within(lim::kMinSigmaRange, lim::kMaxSigma))
+      ->capture_default_str();
+  cmd->add_option("--bearing-sigma", args->gen.bearing_sigma, "Generator: bearing noise [rad]")
+      ->check(within(lim::kMinSigmaBearing, lim::kMaxSigma))
+      ->capture_default_str();
   cmd->add_option("--pose-sigma", args->pose_sigma, "Generator: pose prior std devs x [m] y [m] theta [rad]")
-      ->expected(3)->capture_default_str();
+      ->expected(3)
+      ->check(within(0.0, lim::kMaxSigma))
+      ->capture_default_str();
   cmd->add_option("--out", args->out, "Generator: output problem file (truth goes to FILE.truth)");
   cmd->callback([args, action] { *action = [args] { return args->generate ? run_generate(*args) : run_solve(*args); }; });
 }

@@ -42,9 +42,16 @@ int run_command_line(int argc, char** argv) {
     fmt::print(stderr, "arbor: error: {}\n", e.what());
     return 2;
   } catch (const std::bad_alloc&) {
-    // What the memory checks (core/io/memory_budget.h) did not foresee: the map grows with the run.
-    fmt::print(stderr, "arbor: failed: out of memory; a run needs more with --particles, a larger map (--landmarks) "
-                       "or the naive back end (--map naive copies every particle's map)\n");
+    // What the memory checks (core/io/memory_budget.h) did not foresee: the map grows with the run. The hint
+    // names the options of the command that ran (`relocalize` has no --particles or --map: hostile C6).
+    const std::vector<CLI::App*> used = app.get_subcommands();
+    const std::string command = used.empty() ? std::string() : used.front()->get_name();
+    if (command == "run")
+      fmt::print(stderr, "arbor: failed: out of memory; a run needs more with --particles, a larger map (--landmarks) "
+                         "or the naive back end (--map naive copies every particle's map)\n");
+    else
+      fmt::print(stderr, "arbor: failed: out of memory; `arbor {}` needs more than this machine has with these "
+                         "options: make the sizes they ask for smaller\n", command);
     return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "arbor: failed: {}\n", e.what());

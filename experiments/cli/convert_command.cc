@@ -40,6 +40,16 @@ std::string default_input(const std::string& from) {
   return data + "victoria_park/isam_gtsam/victoria_park.txt";
 }
 
+// --estimate-noise asks for estimates: data that give none (no residual, no motion window) used to write the
+// documented defaults without a word (hostile B9).
+void require_estimates(std::int64_t residuals, std::int64_t windows, const std::string& input) {
+  if (residuals == 0 || windows == 0)
+    throw InputError("", 0, "--estimate-noise",
+                     fmt::format("{} gives nothing to estimate the {} noise from ({} measurement residuals, {} motion "
+                                 "windows); leave out --estimate-noise to write the documented defaults",
+                                 input, residuals == 0 ? "measurement" : "motion", residuals, windows));
+}
+
 void print_measurement_estimate(const MeasurementNoiseEstimate& m) {
   fmt::print("  measurement noise from {} residuals: sigma_range {:.4f} m (MAD {:.4f}, bias {:+.4f}), sigma_bearing "
              "{:.4f} rad (MAD {:.4f}, bias {:+.4f}); beyond 3 sigma {:.1f} %, beyond 5 sigma (dropped) {:.1f} %\n",
@@ -66,6 +76,7 @@ int run_convert(const ConvertOptions& o) {
       print_measurement_estimate(m);
       fmt::print("  motion noise from {} windows of {} s: q_v {:.3g} m^2/s (MAD {:.3g}), q_omega {:.3g} rad^2/s (MAD {:.3g})\n",
                  u.windows, o.noise_window_s, u.q_1, u.mad_q_1, u.q_2, u.mad_q_2);
+      require_estimates(m.count, u.windows, input);
       apply_noise_estimates(m, u, &scenario);
     }
   } else if (o.from == "acfr-car-park") {
@@ -77,6 +88,7 @@ int run_convert(const ConvertOptions& o) {
       print_measurement_estimate(e.measurement);
       fmt::print("  motion noise from {} windows of 2 s on the GPS track: q_v {:.3g} m^2/s (MAD {:.3g}), q_steer {:.3g} "
                  "rad^2 s (MAD {:.3g})\n", e.motion.windows, e.motion.q_1, e.motion.mad_q_1, e.motion.q_2, e.motion.mad_q_2);
+      require_estimates(e.measurement.count, e.motion.windows, input);
       apply_noise_estimate(e, &scenario);
     }
   } else if (o.from == "isam") {

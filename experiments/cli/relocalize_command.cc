@@ -16,7 +16,9 @@
 
 #include "core/engine/rng.h"
 #include "core/math/chi_square.h"
+#include "core/io/field_limits.h"
 #include "core/io/input_error.h"
+#include "core/io/memory_budget.h"
 #include "core/metrics/run_statistics.h"
 #include "core/models/range_bearing_model.h"
 #include "experiments/cli/commands.h"
@@ -172,9 +174,11 @@ int run_relocalize(const RelocalizeArgs& a) {
   WorldOptions wo;
   if (!from_string(a.world, &wo.kind)) throw InputError("", 0, "--world", "must be uniform, clustered or rooms");
   if (a.landmarks < 3) throw InputError("", 0, "--landmarks", "must be at least 3");
+  // 735 bytes a landmark at 10^6 (peak RSS 743 MB: the world, its grid and the known map's locality sets):
+  // 2 * 10^9 ended in std::bad_alloc, with a hint about options relocalize does not have (hostile C6).
+  require_memory(a.landmarks, 700.0, "--landmarks", "landmarks");
   if (a.observations < 2) throw InputError("", 0, "--observations", "must be at least 2");
   if (a.trials < 1) throw InputError("", 0, "--trials", "must be at least 1");
-  if (a.clutter < 0.0) throw InputError("", 0, "--clutter", "must be >= 0");
   for (const auto& s : a.strategies)
     if (!visit_strategy(s, []<class S>() {}))
       throw InputError("", 0, "--assoc", fmt::format("unknown strategy '{}' (valid: {})", s,
@@ -311,7 +315,10 @@ void add_relocalize_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--landmarks", args->landmarks, "Map size n")->capture_default_str();
   cmd->add_option("--observations", args->observations, "Measured landmarks per scan m (the nearest visible)")
       ->capture_default_str();
-  cmd->add_option("--clutter", args->clutter, "Expected spurious measurements per scan (Poisson)")->capture_default_str();
+  // simulate's cap: each spurious measurement is drawn and searched, so 1e9 of them hung and exhausted memory.
+  cmd->add_option("--clutter", args->clutter, "Expected spurious measurements per scan (Poisson)")
+      ->check(within(0.0, kMaxClutterRate))
+      ->capture_default_str();
   cmd->add_option("--trials", args->trials, "Kidnappings")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (world and trials)")
       ->check(unsigned_number())
@@ -319,6 +326,7 @@ void add_relocalize_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--jump-m", args->jump_m, "Position jump of the kidnapping [m]")->capture_default_str();
   cmd->add_option("--jump-rad", args->jump_rad, "Heading jump of the kidnapping [rad]")->capture_default_str();
   cmd->add_option("--map-sigma", args->map_sigma_m, "Std dev of the known map's landmark estimates [m]")
+      ->check(within(0.0, scenario_limits::kMaxSigma))  // a scenario's sigma limit: its square must not overflow
       ->capture_default_str();
   cmd->add_option("--accept", args->accept,
                   "Pose-free search: stop at the first pose that explains this fraction of the scan (0: search to "

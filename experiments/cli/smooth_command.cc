@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "core/io/input_error.h"
+#include "experiments/options/option_checks.h"
 #include "experiments/run/smooth_run.h"
 
 namespace arbor::cli {
@@ -60,6 +61,7 @@ void add_smooth_command(CLI::App& app, CommandAction* action) {
   cmd->add_option("--max-iterations", config->options.max_iterations, "Iteration cap of the final solve")
       ->capture_default_str();
   cmd->add_option("--threads", config->options.threads, "Ceres threads (Jacobians and linear algebra)")
+      ->check(within(1, kMaxThreads))
       ->capture_default_str();
   cmd->add_option("--marginals-max-poses", config->options.pose_marginals_max_poses,
                   "Compute the poses' marginal covariances (for the NEES against ground-truth poses) only up to this "

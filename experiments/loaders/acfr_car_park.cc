@@ -168,6 +168,8 @@ Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const Be
   const auto intensity = read_laser(intensity_path, 'i');
   if (ranges.size() != intensity.size())
     throw InputError(intensity_path, 0, "", fmt::format("{} intensity scans but {} range scans in {}", intensity.size(), ranges.size(), ranges_path));
+  // Header-only laser files converted to a scenario of 0 scans (hostile B9); Victoria Park refuses the same.
+  if (ranges.empty()) throw InputError(ranges_path, 0, "", "no laser scans");
   std::vector<TimedScan> scans;
   std::int64_t detections = 0;
   for (std::size_t k = 0; k < ranges.size(); ++k) {
@@ -179,7 +181,8 @@ Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const Be
   }
 
   Scenario s;
-  s.truth_track = read_position_track(join_path(dir, "csv/gps.csv"), {"time_s", false}, "x_east_m", "y_north_m");
+  const std::string gps_path = join_path(dir, "csv/gps.csv");
+  s.truth_track = read_position_track(gps_path, {"time_s", false}, "x_east_m", "y_north_m");
   s.truth_landmarks = read_beacons(join_path(dir, "csv/beacons_groundtruth.csv"));
   s.metadata["source"] = "acfr-car-park";
   s.metadata["citation"] = "Nieto_Nebot_ACFR_car_park";
@@ -204,9 +207,15 @@ Scenario load_acfr_car_park(const std::string& dir, LoadReport* report, const Be
   // Initial laser pose from GPS: the track's position and heading, moved by the lever arm that the beacon
   // fits measure (the antenna's place on the ute is not documented). A convention for overlaying results on
   // the surveyed frame, not ground truth.
+  // A track too short for either used to start the run silently at the origin or heading 0 (hostile B9).
   const double t0 = s.truth_track.empty() ? s.start_time_s : std::max(s.start_time_s, s.truth_track.front().time_s);
-  const Vec2 p0 = gps_at(s.truth_track, t0).value_or(Vec2::Zero());
-  s.initial_pose = {p0.x(), p0.y(), heading_from_track(gps_heading(s.truth_track, t0 + 0.5).value_or(0.0), controls.front().u2, s.motion.vehicle)};
+  const std::optional<Vec2> p0 = gps_at(s.truth_track, t0);
+  if (!p0) throw InputError(gps_path, 0, "", fmt::format("no GPS fix at the start (t = {} s): the start pose is taken from the track", t0));
+  const std::optional<double> h0 = gps_heading(s.truth_track, t0 + 0.5);
+  if (!h0)
+    throw InputError(gps_path, 0, "", fmt::format("too few fixes for a start heading: the track must cover t = {} to {} s "
+                                                  "and move at least 0.3 m in it", t0, t0 + 1.0));
+  s.initial_pose = {p0->x(), p0->y(), heading_from_track(*h0, controls.front().u2, s.motion.vehicle)};
   const CarParkNoiseEstimate est = estimate_car_park_noise(s);
   s.initial_pose = s.initial_pose.compose({est.gps_to_laser_m.x(), est.gps_to_laser_m.y(), 0.0});
   s.initial_sigma = Vec3::Zero();

@@ -72,7 +72,7 @@ std::vector<ControlSample> read_ackermann_dead_reckoning(const std::string& path
     order.check(in, c.time_ms, time.name);
     c.u1 = control_field(in, 1, speed);
     c.u2 = in.number(2, "steering_rad");
-    if (std::abs(c.u2) >= 1.2) in.fail("steering_rad", fmt::format("steering {} rad is outside the vehicle's range", c.u2));
+    if (std::abs(c.u2) >= scenario_limits::kMaxSteering) in.fail("steering_rad", fmt::format("steering {} rad is outside the vehicle's range", c.u2));
     c.line = in.line_number();
     controls.push_back(c);
   }

@@ -12,6 +12,11 @@
 
 namespace arbor::cli {
 
+// The most worker threads an option may ask for (run, smooth, a sweep's grid): far above any machine Arbor
+// runs on, and far below the counts that made TBB's arena crash (10^7 segfaulted) or Ceres allocate per
+// thread without bound (10^9 hung, growing memory) before they could say anything.
+inline constexpr int kMaxThreads = 1024;
+
 // For an unsigned option (seeds, counts): refuses a value with a leading minus sign or beyond 2^64 - 1.
 const CLI::Validator& unsigned_number();
 

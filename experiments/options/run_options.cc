@@ -139,7 +139,8 @@ const std::vector<RunOptionDescriptor>& run_option_list() {
       for_particles(value_option("particles", FIELD(options.particles), "Number of particles M")),
       value_option("seed", FIELD(options.seed), "Seed of every random draw of the filter", unsigned_number()),
       recorded_as(value_option("threads", FIELD(options.threads),
-                               "Worker threads (0 = all cores); results do not depend on it"),
+                               "Worker threads (0 = all cores); results do not depend on it",
+                               within(0, kMaxThreads)),
                   [](const RunConfig& c) {  // what ran, not what was asked: 0 asks for every core
                     return Json(c.options.threads > 0 ? c.options.threads : tbb::info::default_concurrency());
                   }),

@@ -6,7 +6,9 @@
 
 #include <fmt/core.h>
 
+#include "core/engine/numerical_breakdown.h"
 #include "core/io/atomic_file.h"
+#include "core/io/input_error.h"
 #include "core/io/memory_budget.h"
 #include "core/io/trajectory_io.h"
 #include "core/metrics/decision_score.h"
@@ -103,7 +105,16 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
     const ScenarioStep& step = scenario.steps[k];
     const auto t0 = std::chrono::steady_clock::now();
-    filter->step(step);
+    try {
+      filter->step(step);
+    } catch (const NumericalBreakdown& e) {
+      // Motion noise or controls inside the format's limits can still be too large for the filter's double
+      // precision (hostile A1, A2); the scenario's figures are the cause, so they are named, not the engine.
+      throw InputError(config.scenario_path, step.source_line, "step",
+                       fmt::format("the {} filter's arithmetic broke down at step {} (t = {} s): {}; the scenario's "
+                                   "motion noise or controls are too large for it",
+                                   to_string(config.options.version), k, step.time_s, e.what()));
+    }
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     step_times.push_back(dt);
     const StepStats& stats = filter->last_step_stats();

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <limits>
 #include <unordered_map>
 
 #include <fmt/core.h>
@@ -90,6 +91,10 @@ SmootherAssociations read_association_decisions(const std::string& dir, const Sc
   a.landmark_ids.resize(scenario.steps.size());
   for (std::size_t k = 0; k < scenario.steps.size(); ++k)
     a.landmark_ids[k].assign(scenario.steps[k].measurements.size(), kUnassociated);
+  // The line that decided each measurement (0: none yet): a second row for one measurement silently replaced
+  // the first (hostile B5); `arbor run` writes exactly one.
+  std::vector<std::vector<int>> decided_at(scenario.steps.size());
+  for (std::size_t k = 0; k < scenario.steps.size(); ++k) decided_at[k].assign(scenario.steps[k].measurements.size(), 0);
   TextReader in(path, ",");
   if (!in.next() || in.field_count() < 3 || in.field(0) != "step")
     throw InputError(path, in.line_number(), "header", "expected the header step,measurement,landmark");
@@ -100,7 +105,15 @@ SmootherAssociations read_association_decisions(const std::string& dir, const Sc
       in.fail("step", fmt::format("step {} is outside the scenario's {} steps", step, scenario.steps.size()));
     if (j < 0 || j >= static_cast<std::int64_t>(a.landmark_ids[step].size()))
       in.fail("measurement", fmt::format("step {} has {} measurements, not {}", step, a.landmark_ids[step].size(), j + 1));
-    if (id < -1) in.fail("landmark", fmt::format("landmark id {} (expected >= 0, or -1 for none)", id));
+    // A run's ids are 32-bit (LandmarkId): the map's writer cast 2^32 to 0 and 2^31 to -2^31 (hostile B4).
+    // Not the readers' 2^30 - 1: a run started from a prior map numbers its new landmarks above that.
+    constexpr std::int64_t kMaxId = std::numeric_limits<LandmarkId>::max();
+    if (id < -1 || id > kMaxId)
+      in.fail("landmark", fmt::format("landmark id {} is outside [0, {}] (or -1 for none)", id, kMaxId));
+    int& decided = decided_at[step][j];
+    if (decided > 0)
+      in.fail("measurement", fmt::format("step {} measurement {} already decided at line {}", step, j, decided));
+    decided = in.line_number();
     a.landmark_ids[step][j] = id;
   }
   return a;

@@ -20,8 +20,7 @@ void require(bool ok, const char* field, const std::string& message) {
   if (!ok) throw InputError("", 0, field, message);
 }
 
-// Knuth's multiplication method; rates here are small (a few per scan).
-constexpr double kMaxClutterRate = 500.0;
+// Knuth's multiplication method; rates here are small (a few per scan, at most kMaxClutterRate).
 
 int sample_poisson(double rate, RandomStream& rng) {
   if (rate <= 0.0) return 0;

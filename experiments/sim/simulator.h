@@ -11,6 +11,10 @@
 
 namespace arbor {
 
+// The largest clutter rate the Poisson sampler serves (Knuth's method is for small rates); `arbor relocalize`
+// applies it too, since each spurious measurement there is drawn and searched.
+inline constexpr double kMaxClutterRate = 500.0;
+
 struct SimulationOptions {
   WorldOptions world;
   int steps = 500;              // scans; the first stands still at the initial pose
@@ -22,7 +26,7 @@ struct SimulationOptions {
   double loop_inset_fraction = 0.25;
   SensorModel sensor = default_sensor();
   double detection_probability = 0.9;
-  double clutter_rate = 0.0;  // expected spurious measurements per scan (Poisson)
+  double clutter_rate = 0.0;  // expected spurious measurements per scan (Poisson), at most kMaxClutterRate
   // Continuous-time (TwistNoise). The defaults give about 2.5 cm along-track and 0.016 rad of heading per 0.5 m
   // of driving, the per-reading noise of Arbor's earlier simulator at its 0.5 s step.
   OdometryNoise odometry{1e-6, 1e-6, 1.25e-3, 5e-4, 4e-4};

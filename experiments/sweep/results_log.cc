@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <fmt/core.h>
@@ -113,6 +114,21 @@ std::vector<ResultRow> read_result_rows(const std::string& jsonl_path, std::vect
     if (lines) lines->push_back(line);
   }
   return rows;
+}
+
+std::vector<ResultRow> last_row_of_each_key(std::vector<ResultRow> rows) {
+  std::map<std::string, std::size_t> last_of_key;
+  for (std::size_t i = 0; i < rows.size(); ++i) last_of_key[rows[i]["key"].get<std::string>()] = i;
+  std::vector<ResultRow> kept;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (last_of_key[rows[i]["key"].get<std::string>()] == i) kept.push_back(std::move(rows[i]));
+  return kept;
+}
+
+bool has_ok_row_of_dataset(const std::string& dir, const std::string& dataset) {
+  for (const ResultRow& row : read_result_rows(dir + "/" + kResultsJsonl))
+    if (row.value("status", std::string()) == "ok" && row.contains("dataset") && row["dataset"] == dataset) return true;
+  return false;
 }
 
 void drop_partial_last_line(const std::string& jsonl_path) {

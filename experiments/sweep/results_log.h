@@ -36,6 +36,12 @@ std::string cell_text(const nlohmann::ordered_json& value);
 // receives each row's line number.
 std::vector<ResultRow> read_result_rows(const std::string& jsonl_path, std::vector<int>* lines = nullptr);
 
+// The newest row of each key (a retried run's row after its failed one), in the order of the rows kept.
+std::vector<ResultRow> last_row_of_each_key(std::vector<ResultRow> rows);
+
+// Whether DIR/results.jsonl holds a finished ("ok") row of a run on this dataset (its path as the spec writes it).
+bool has_ok_row_of_dataset(const std::string& dir, const std::string& dataset);
+
 // Cuts a trailing partial line (a write interrupted by power loss) so the next append starts a fresh line.
 void drop_partial_last_line(const std::string& jsonl_path);
 

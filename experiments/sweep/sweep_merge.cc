@@ -84,11 +84,23 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
       first = manifest;
       first_dir = dir;
       if (std::filesystem::exists(dir + "/spec.toml"))
-        for (const RunParams& run : read_sweep_spec(dir + "/spec.toml").runs) grid.insert(run.key());
+        // The grid's keys only: the copy's relative dataset paths resolve from DIR, not from where the spec
+        // was, and a dataset moved since must not block the merge (hostile C1).
+        for (const RunParams& run : read_sweep_spec(dir + "/spec.toml", /*inputs_must_exist=*/false).runs)
+          grid.insert(run.key());
     } else if (manifest->spec_hash != first->spec_hash || manifest->columns != first->columns) {
       throw InputError(dir + "/" + kSweepManifest, 0, "spec_hash",
                        fmt::format("comes from another spec (hash {}) than {} (hash {}); refusing to merge different grids",
                                    manifest->spec_hash, first_dir, first->spec_hash));
+    } else if (const auto dataset = changed_dataset(*first, *manifest);
+               dataset && has_ok_row_of_dataset(first_dir, *dataset) && has_ok_row_of_dataset(dir, *dataset)) {
+      // One spec, but a dataset regenerated between the shards: their results share keys and differ in meaning.
+      throw InputError(dir + "/" + kSweepManifest, 0, "datasets",
+                       fmt::format("dataset '{}' had other content here than in {} (fingerprint {} against {}); "
+                                   "refusing to merge rows of two versions of it",
+                                   *dataset, first_dir, manifest->datasets.at(*dataset), first->datasets.at(*dataset)));
+    } else {
+      first->datasets.insert(manifest->datasets.begin(), manifest->datasets.end());  // those the first lacks
     }
     fold(dir);
     ++summary.inputs;
@@ -98,6 +110,11 @@ MergeSummary merge_sweeps(const std::vector<std::string>& inputs, const std::str
   if (const auto existing = read_manifest(out)) {
     if (existing->spec_hash != first->spec_hash)
       throw InputError(out + "/" + kSweepManifest, 0, "spec_hash", "the output directory holds another sweep");
+    if (const auto dataset = changed_dataset(*existing, *first); dataset && has_ok_row_of_dataset(out, *dataset))
+      throw InputError(out + "/" + kSweepManifest, 0, "datasets",
+                       fmt::format("dataset '{}' had other content in the output directory's rows; refusing to merge "
+                                   "rows of two versions of it", *dataset));
+    first->datasets.insert(existing->datasets.begin(), existing->datasets.end());
     // Merging into an earlier merge (or a shard) of the same spec adds to its rows; they used to be dropped.
     fold(out);
   }

@@ -243,6 +243,10 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   // then the directory's manifest must match this spec and shard.
   fs::create_directories(out);
   const DirectoryLock lock(out);
+  SweepManifest manifest{spec.hash, spec.name, shard, summary.grid_runs, columns};
+  for (const RunParams& run : spec.runs)
+    if (!run.dataset.empty() && !manifest.datasets.count(run.dataset))
+      manifest.datasets[run.dataset] = dataset_fingerprint(run.dataset_path);
   if (const auto existing = read_manifest(out)) {
     if (existing->spec_hash != spec.hash)
       throw InputError(out + "/" + kSweepManifest, 0, "spec_hash",
@@ -251,8 +255,14 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     if (existing->shard != shard)
       throw InputError(out + "/" + kSweepManifest, 0, "shard",
                        fmt::format("this directory holds shard {}, not {}", existing->shard, shard));
+    // Failed rows hold no result to mix (a broken dataset fixed, then --retry-failed): only finished ones count.
+    if (const auto dataset = changed_dataset(*existing, manifest); dataset && has_ok_row_of_dataset(out, *dataset))
+      throw InputError(out + "/" + kSweepManifest, 0, "datasets",
+                       fmt::format("dataset '{}' has changed since this directory's runs (fingerprint {}, now {}): its "
+                                   "rows would mix two versions of it; use a new --out",
+                                   *dataset, existing->datasets.at(*dataset), manifest.datasets.at(*dataset)));
   }
-  write_manifest(out, {spec.hash, spec.name, shard, summary.grid_runs, columns});
+  write_manifest(out, manifest);
   {
     std::ifstream in(spec.path);
     std::stringstream text;
@@ -263,17 +273,10 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   // Resume: the rows already recorded (last row per key wins, for --retry-failed) decide what is skipped.
   const std::string jsonl = out + "/" + kResultsJsonl;
   drop_partial_last_line(jsonl);
-  std::vector<ResultRow> rows = read_result_rows(jsonl);
-  std::map<std::string, std::size_t> last_of_key;
-  for (std::size_t i = 0; i < rows.size(); ++i) last_of_key[rows[i]["key"].get<std::string>()] = i;
-  std::vector<ResultRow> kept;
+  const std::vector<ResultRow> kept = last_row_of_each_key(read_result_rows(jsonl));
   std::set<std::string> done;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const std::string key = rows[i]["key"].get<std::string>();
-    if (last_of_key[key] != i) continue;
-    if (!options.retry_failed || rows[i].value("status", std::string()) == "ok") done.insert(key);
-    kept.push_back(std::move(rows[i]));
-  }
+  for (const ResultRow& row : kept)
+    if (!options.retry_failed || row.value("status", std::string()) == "ok") done.insert(row["key"].get<std::string>());
   write_result_files(out, kept, columns);  // the CSV always mirrors the JSONL, even after a kill between the two
 
   std::vector<RunParams> pending;
@@ -303,7 +306,8 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
              spec.name, mine.size(), shard, spec.runs.size(), summary.already_done, pending.size(), jobs);
 
   // Phase 1: the simulated scenarios the pending runs need, cached by their parameters in DIR/scenarios/.
-  std::map<std::string, std::string> scenario_error;  // scenario name -> why it could not be made
+  // Scenario name -> the status and error of the runs that need it, where it could not be made.
+  std::map<std::string, std::pair<std::string, std::string>> scenario_error;
   {
     std::deque<Job> sims;
     std::set<std::string> queued;
@@ -318,8 +322,12 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
       const std::string log = out + "/logs/simulate-" + name + ".log";
       sims.push_back({name, simulate_command(run, exe, file), log, [&, name, file, log](const ChildExit& e, double) {
                         ++finished;
-                        if (!e.ok() || !fs::exists(file))
-                          scenario_error[name] = fmt::format("arbor simulate failed ({}): {}", e.describe(), last_log_line(log));
+                        // A simulation the time limit stopped is a timeout, as a run would be, not "killed by
+                        // signal 9" (hostile C6).
+                        if (e.timed_out)
+                          scenario_error[name] = {"timeout", fmt::format("arbor simulate stopped after the {} s limit", spec.timeout_s)};
+                        else if (!e.ok() || !fs::exists(file))
+                          scenario_error[name] = {"failed", fmt::format("arbor simulate failed ({}): {}", e.describe(), last_log_line(log))};
                       }});
     }
     if (!sims.empty()) {
@@ -344,7 +352,7 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
     const std::string log = out + "/logs/" + key + ".log";
     const std::string run_dir = out + "/runs/" + key;
     if (auto it = scenario_error.find(run.scenario_name()); !run.scenario_name().empty() && it != scenario_error.end()) {
-      append_result_row(out, make_row(run, columns, spec.metrics, "failed", it->second, nullptr, nullptr, -1), columns);
+      append_result_row(out, make_row(run, columns, spec.metrics, it->second.first, it->second.second, nullptr, nullptr, -1), columns);
       ++summary.finished;
       ++summary.failed;
       continue;
@@ -385,6 +393,9 @@ SweepSummary run_sweep(const SweepSpec& spec, const SweepOptions& options) {
   });
   summary.interrupted = !completed;
   restore_signals();
+  // A retried run appended its new row after its failed one; whoever reads results.csv directly counted both
+  // (hostile B10). Keep the newest row of each key, as the next start would.
+  if (options.retry_failed) write_result_files(out, last_row_of_each_key(read_result_rows(jsonl)), columns);
   return summary;
 }
 

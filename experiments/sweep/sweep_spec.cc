@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string_view>
 #include <tuple>
@@ -327,7 +329,22 @@ std::string RunParams::key() const {
 
 bool operator<(const RunParams& a, const RunParams& b) { return tie(a) < tie(b); }
 
-SweepSpec read_sweep_spec(const std::string& path) {
+namespace {
+
+// A run option's value as `arbor run` reads it: a number by its value, a switch as true or false (empty for
+// any other spelling), a name as written.
+std::string setting_of(const std::string& option, const std::string& value) {
+  static const std::vector<cli::RunOptionInfo> infos = cli::run_option_info();
+  const auto info = std::find_if(infos.begin(), infos.end(), [&](const auto& i) { return i.name == option; });
+  const std::string type = info == infos.end() ? "str" : info->type;
+  if (type == "bool") return value == "true" || value == "false" ? value : std::string();
+  if (type == "int" || type == "float") return fmt::format("{}", std::strtod(value.c_str(), nullptr));
+  return value;
+}
+
+}  // namespace
+
+SweepSpec read_sweep_spec(const std::string& path, bool inputs_must_exist) {
   SpecReader in(path);
   if (!std::filesystem::exists(path)) throw InputError(path, 0, "", "sweep spec not found");
   toml::table root;
@@ -382,7 +399,7 @@ SweepSpec read_sweep_spec(const std::string& path) {
       RunParams p;
       p.dataset = in.names(item, "scenarios.datasets", {}).front();
       const std::filesystem::path resolved = std::filesystem::path(p.dataset).is_absolute() ? std::filesystem::path(p.dataset) : spec_dir / p.dataset;
-      if (!std::filesystem::is_regular_file(resolved))
+      if (inputs_must_exist && !std::filesystem::is_regular_file(resolved))
         in.fail(line_of(item), "scenarios.datasets", fmt::format("dataset '{}' not found (looked for {})", p.dataset, resolved.string()));
       p.dataset_path = resolved.lexically_normal().string();
       bases.push_back(p);
@@ -458,8 +475,23 @@ SweepSpec read_sweep_spec(const std::string& path) {
     spec.run_option_names.push_back(name);
     const std::string field = "grid." + name;
     std::vector<std::pair<std::string, std::string>> values;
+    std::map<std::string, std::pair<std::string, int>> spelling_of;  // what a value means -> its text and line
     for (const auto& [line, value] : in.option_values(*node, field)) {
-      if (const std::string error = cli::run_option_error(name, value); !error.empty()) in.fail(line, field, error);
+      // --prior-map's check is that the file exists (from the working directory): skipped with the datasets'.
+      const bool file_check_only = name == "prior-map" && !inputs_must_exist;
+      if (const std::string error = file_check_only ? std::string() : cli::run_option_error(name, value); !error.empty())
+        in.fail(line, field, error);
+      // Two spellings of one setting ("0.9" and "0.90", true and 1) made two grid points of one configuration,
+      // split apart in the analysis (hostile B11). The run key keeps the text as written, so a switch takes
+      // true or false only, and a second spelling of a value already listed is refused.
+      const std::string meaning = setting_of(name, value);
+      if (meaning.empty())
+        in.fail(line, field, fmt::format("a switch takes true or false (got '{}'), so that one setting has one run key", value));
+      const auto [first, inserted] = spelling_of.emplace(meaning, std::make_pair(value, line));
+      if (!inserted && first->second.first != value)
+        in.fail(line, field, fmt::format("'{}' is the same setting as '{}' at line {}: it would run every grid point "
+                                         "twice under two keys",
+                                         value, first->second.first, first->second.second));
       values.emplace_back(name, value);
     }
     std::vector<std::vector<std::pair<std::string, std::string>>> grown;

@@ -59,8 +59,10 @@ std::vector<std::string> default_metrics(bool with_smoother);
 
 // Reads and validates a spec, and expands the grid. Throws InputError(file, line, field, why) on any
 // problem: TOML syntax, unknown table or key, unknown filter/map/assoc/world, bad range or value, a missing
-// required field, a dataset that does not exist. Nothing is run; nothing is written.
-SweepSpec read_sweep_spec(const std::string& path);
+// required field, a dataset or prior map that does not exist. Nothing is run; nothing is written.
+// inputs_must_exist = false skips only the last check, for a reader that needs the grid's keys and never opens
+// those files (merge reads the copy DIR/spec.toml, where their relative paths no longer resolve).
+SweepSpec read_sweep_spec(const std::string& path, bool inputs_must_exist = true);
 
 // The names the spec accepts: DESIGN.md §9 filters and worlds, the registry's map back ends and strategies.
 const std::vector<std::string>& known_filters();

@@ -228,6 +228,21 @@ TEST(SweepSpec, RunOptionValuesThatSanitiseAlikeKeepDistinctKeys) {
   EXPECT_EQ(spec.runs.size(), 2u * spec_from(dir, kGoodSpec).runs.size());
 }
 
+// `relocalize = 1` and `chi2 = [0.9, "0.90"]` ran as `arbor run` reads them, but under keys of their own: the
+// same configuration ran twice and split apart in the analysis (hostile B11). Literal repeats stay one run.
+TEST(SweepSpec, TwoSpellingsOfOneRunOptionSettingAreRefused) {
+  ScratchDir dir("spec");
+  InputError e = error_of(dir, std::string(kGoodSpec) + "chi2 = [0.9,\n  \"0.90\"]\n");
+  EXPECT_EQ(e.field(), "grid.chi2");
+  EXPECT_EQ(e.line(), 19);
+  EXPECT_NE(std::string(e.what()).find("'0.90' is the same setting as '0.9' at line 18"), std::string::npos) << e.what();
+  e = error_of(dir, std::string(kGoodSpec) + "relocalize = 1\n");
+  EXPECT_EQ(e.field(), "grid.relocalize");
+  EXPECT_NE(std::string(e.what()).find("a switch takes true or false (got '1')"), std::string::npos) << e.what();
+  EXPECT_EQ(spec_from(dir, std::string(kGoodSpec) + "chi2 = [0.9, 0.9, 0.95]\n").runs.size(),
+            2 * spec_from(dir, kGoodSpec).runs.size());
+}
+
 TEST(SweepSpec, ABadRunOptionValueNamesItsLineAndFieldWithTheRunCommandsMessage) {
   ScratchDir dir("spec");
   std::string text = kGoodSpec;

@@ -210,6 +210,91 @@ TEST_F(SweepEndToEnd, ASecondProcessIntoTheSameOutIsRefused) {
       << read_text(dir / "free.log");
 }
 
+// --retry-failed appended each retried run's ok row after its failed one, and results.csv kept both until the
+// next start: whoever read it directly counted every retried run twice (hostile B10).
+TEST_F(SweepEndToEnd, RetriedRunsReplaceTheirFailedRows) {
+  ScratchDir dir("retry");
+  write_text(dir / "w.scn", "not a scenario\n");  // every run fails on it
+  write_text(dir / "d.toml", "[scenarios]\ndatasets = [\"w.scn\"]\n[grid]\nfilter = \"fastslam1\"\nmap = \"naive\"\n"
+                             "assoc = \"known\"\nparticles = 3\nseed = { from = 1, to = 2 }\nthreads = 1\n");
+  const std::vector<std::string> sweep{binary_, "sweep", dir / "d.toml", "--out", dir / "out"};
+  run_to_end(sweep, dir / "first.log");
+  ASSERT_EQ(rows_of(dir / "out").size(), 2u) << read_text(dir / "first.log");
+  ASSERT_EQ(run_to_end({binary_, "simulate", "--landmarks", "20", "--steps", "10", "--out", dir / "w.scn"}, dir / "s.log"), 0);
+  std::vector<std::string> retry = sweep;
+  retry.push_back("--retry-failed");
+  ASSERT_EQ(run_to_end(retry, dir / "retry.log"), 0) << read_text(dir / "retry.log");
+  const auto rows = rows_of(dir / "out");  // also checks that results.csv holds as many rows as results.jsonl
+  ASSERT_EQ(rows.size(), 2u) << read_text(dir / "out/results.csv");
+  for (const auto& r : rows) EXPECT_NE(r.find("status=\"ok\""), std::string::npos) << r;
+}
+
+// Merge re-read each shard's copy of the spec, whose relative dataset path resolved from the shard's directory:
+// the documented Slurm layout (--out .../shard-N) could not merge a dataset sweep, nor could any sweep whose
+// dataset was moved since (hostile C1). Merge needs the grid's keys, not the datasets.
+TEST_F(SweepEndToEnd, DatasetShardsMergeWhereverTheirDatasetIs) {
+  ScratchDir dir("dataset_shards");
+  std::filesystem::create_directories(dir / "specs");
+  std::filesystem::create_directories(dir / "data");
+  ASSERT_EQ(run_to_end({binary_, "simulate", "--landmarks", "20", "--steps", "10", "--out", dir / "data/w.scn"}, dir / "s.log"), 0);
+  write_text(dir / "specs/d.toml", "[scenarios]\ndatasets = [\"../data/w.scn\"]\n[grid]\nfilter = \"fastslam1\"\n"
+                                   "map = \"naive\"\nassoc = \"known\"\nparticles = 3\nseed = { from = 1, to = 2 }\n"
+                                   "threads = 1\n");
+  for (int i = 0; i < 2; ++i)
+    ASSERT_EQ(run_to_end({binary_, "sweep", dir / "specs/d.toml", "--out", dir / fmt::format("shards/sh{}", i), "--shard",
+                          fmt::format("{}/2", i)}, dir / "shard.log"), 0)
+        << read_text(dir / "shard.log");
+  std::filesystem::remove(dir / "data/w.scn");
+  ASSERT_EQ(run_to_end({binary_, "merge", dir / "shards/sh0", dir / "shards/sh1", "--out", dir / "merged"}, dir / "m.log"), 0)
+      << read_text(dir / "m.log");
+  EXPECT_EQ(rows_of(dir / "merged").size(), 2u);
+}
+
+// The run keys name a dataset by its path: a dataset regenerated between two shards (or before a resume) mixed
+// rows of two versions under one key, and merge counted "4 of 4 grid runs present" (hostile B6). sweep.json
+// records each dataset's fingerprint; the resume and the merge compare them.
+TEST_F(SweepEndToEnd, ADatasetChangedBetweenShardsIsRefused) {
+  ScratchDir dir("dataset_changed");
+  const auto simulate = [&](const char* seed) {
+    return run_to_end({binary_, "simulate", "--landmarks", "20", "--steps", "10", "--seed", seed, "--out", dir / "w.scn"},
+                      dir / "s.log");
+  };
+  ASSERT_EQ(simulate("1"), 0);
+  write_text(dir / "d.toml", "[scenarios]\ndatasets = [\"w.scn\"]\n[grid]\nfilter = \"fastslam1\"\nmap = \"naive\"\n"
+                             "assoc = \"known\"\nparticles = 3\nseed = { from = 1, to = 2 }\nthreads = 1\n");
+  const auto shard = [&](int i) {
+    return run_to_end({binary_, "sweep", dir / "d.toml", "--out", dir / fmt::format("sh{}", i), "--shard",
+                       fmt::format("{}/2", i)}, dir / fmt::format("sh{}.log", i));
+  };
+  ASSERT_EQ(shard(0), 0) << read_text(dir / "sh0.log");
+  ASSERT_EQ(simulate("9"), 0);  // the dataset is regenerated
+  ASSERT_EQ(shard(1), 0) << read_text(dir / "sh1.log");
+  EXPECT_EQ(run_to_end({binary_, "merge", dir / "sh0", dir / "sh1", "--out", dir / "merged"}, dir / "m.log"), 2);
+  EXPECT_NE(read_text(dir / "m.log").find("field 'datasets': dataset 'w.scn' had other content"), std::string::npos)
+      << read_text(dir / "m.log");
+  // Resuming the first shard with the new file is refused the same way; with the old one back it is not.
+  EXPECT_EQ(shard(0), 2);
+  EXPECT_NE(read_text(dir / "sh0.log").find("dataset 'w.scn' has changed since this directory's runs"), std::string::npos)
+      << read_text(dir / "sh0.log");
+  ASSERT_EQ(simulate("1"), 0);
+  EXPECT_EQ(shard(0), 0) << read_text(dir / "sh0.log");
+}
+
+// A simulation the sweep's time limit stopped recorded its runs as "failed ... killed by signal 9" rather than
+// as a timeout (hostile C6). A million-step world cannot be simulated in the 10 ms the spec allows.
+TEST_F(SweepEndToEnd, ASimulationPastTheTimeLimitIsATimeout) {
+  ScratchDir dir("simulate_timeout");
+  write_text(dir / "t.toml", "[sweep]\ntimeout_s = 0.01\n[scenarios]\nworld = \"uniform\"\nlandmarks = 1000\n"
+                             "steps = 1000000\nclutter = 0.0\n[grid]\nfilter = \"fastslam1\"\nmap = \"naive\"\n"
+                             "assoc = \"known\"\nparticles = 3\nseed = 1\nthreads = 1\n");
+  run_to_end({binary_, "sweep", dir / "t.toml", "--out", dir / "out"}, dir / "t.log");
+  const auto rows = read_result_rows(dir / "out/results.jsonl");
+  ASSERT_EQ(rows.size(), 1u) << read_text(dir / "t.log");
+  EXPECT_EQ(rows[0]["status"], "timeout") << rows[0].dump();
+  EXPECT_NE(rows[0]["error"].get<std::string>().find("arbor simulate stopped after the 0.01 s limit"), std::string::npos)
+      << rows[0].dump();
+}
+
 TEST_F(SweepEndToEnd, MalformedSpecFailsBeforeAnyRunNamingTheLine) {
   ScratchDir dir("malformed");
   std::string bad = tiny_spec();

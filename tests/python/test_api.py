@@ -264,6 +264,24 @@ def test_the_step_interface_refuses_what_a_scenario_file_would(scenario):
     assert np.isfinite(f.best_trajectory()).all()
 
 
+def test_a_numerical_breakdown_is_an_input_error_naming_the_step(tmp_path):
+    """Motion noise at the format's limit (1e6) made FastSLAM 2.0's weights NaN and aborted the interpreter
+    (hostile A1); arbor.run and Filter.step raise InputError naming the step instead."""
+    arbor.cli("simulate", "--landmarks", 20, "--steps", 10, "--odometry-noise", *[1e6] * 5, "--out", tmp_path / "n.scn")
+    noisy = arbor.Scenario.load(tmp_path / "n.scn")
+    options = dict(filter="fastslam2", assoc="nn", particles=5, seed=1)
+    with pytest.raises(arbor.InputError) as error:
+        arbor.run(noisy, **options)
+    assert error.value.field == "step"
+    f = arbor.Filter(noisy, **options)
+    z = noisy.measurements
+    with pytest.raises(arbor.InputError) as error:
+        for k, (t, u, scan) in enumerate(zip(noisy.times, noisy.controls, noisy.scans)):
+            mine = z["step"] == k
+            f.step(t, u, z["range"][mine], z["bearing"][mine], scan=scan)
+    assert error.value.field == "step" and "arithmetic broke down" in str(error.value)
+
+
 def test_from_arrays_refuses_ids_that_are_not_ids(scenario):
     """NaN truth ids became -2147483648 and 1.5 became 1; duplicate landmark ids and bearings of 999 passed,
     and only `save` refused the scenario afterwards."""
