@@ -39,7 +39,7 @@ double normalize_particle_weights(std::vector<Particle>* particles, std::vector<
   std::vector<double> log_weights(particles->size());
   for (std::size_t i = 0; i < particles->size(); ++i) {
     log_weights[i] = (*particles)[i].log_weight;
-    // Not an abort: huge motion noise or controls within the scenario limits can swamp the weights (A1, A2).
+    // Not an abort: huge motion noise or controls within the scenario limits can swamp the weights.
     if (std::isnan(log_weights[i]))
       throw NumericalBreakdown(fmt::format("NaN weight for particle {} at step {}", i, step));
   }
