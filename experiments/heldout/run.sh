@@ -8,7 +8,8 @@
 # calibration-gates|evaluation-gates: JCBB's compatibility and new-landmark gates;
 # calibration-loops|evaluation-loops: --close-loops and --pose-from-confirmed with JCBB;
 # calibration-lineage|evaluation-lineage: how far back the particle set can revise its path, at 100 and 1000
-# particles, with analysis/studies/lineage.py)
+# particles, with analysis/studies/lineage.py;
+# calibration-tempering|evaluation-tempering: tempered weights, --weight-exponent)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -34,9 +35,9 @@ if [[ $set_name == *-kidnap ]]; then
   exit 0
 fi
 case $set_name in
-  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage) robots="3 4 5" ;;
-  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc, -kidnap, -gates, -loops or -lineage, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
+  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering) robots="1 2" ;;
+  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering) robots="3 4 5" ;;
+  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc, -kidnap, -gates, -loops, -lineage or -tempering, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p out/scenarios "$out"
