@@ -60,13 +60,14 @@ class FastSlam {
     const Mat2 typical_innovation = 2.0 * R_;  // a fresh landmark's innovation covariance is about 2R
     const double gate = chi_square_quantile(options.association.gate_probability, 2);
     log_likelihood_unpaired_ = -0.5 * gate - std::log(2.0 * kPi) - 0.5 * std::log(typical_innovation.determinant());
+    weight_exponent_ = options.effective_weight_exponent(Assoc::kTraits.uses_ground_truth);
     pose_from_confirmed_ = options.pose_from_confirmed && !Assoc::kTraits.uses_ground_truth;
     keep_localities_ = Assoc::kTraits.reads_localities || options.relocalize;  // the relocaliser's tree reads them
     if (options.relocalize) relocalization_.emplace(std::move(relocalizer), options.relocalize_min_pairings);
     if (options.close_loops && !Assoc::kTraits.uses_ground_truth)  // known association's ids close loops themselves
       loops_.emplace(options.loop_drift_m, gate, options.dormant_scans);
     if (options.gate_covariance == GateCovariance::kSet) set_spread_.emplace(options.particles);
-    if (options.move_window > 0) moves_.emplace(options, ekf_);
+    if (options.move_window > 0) moves_.emplace(options, weight_exponent_, ekf_);
     last_time_s_ = scenario.start_time_s;
     particles_.resize(options.particles);
     for (int i = 0; i < options.particles; ++i) start_particle(scenario, options.seed, i, &particles_[i]);
@@ -253,7 +254,7 @@ class FastSlam {
     if (loops_) loops_->find_aliases(s.touched, s.nearby, scan_index_, &p.aliases, &p.loop_closures);
     write_touched(s.touched, keep_localities_, &p.map);  // locality sets only where something reads them
     apply_negative_evidence(p, s, s.touched);
-    p.log_weight += options_.weight_exponent * log_weight;  // FastSlamOptions::weight_exponent
+    p.log_weight += weight_exponent_ * log_weight;  // FastSlamOptions::weight_exponent
     record_pose(p, step);
     p.decisions.push(applied_decisions(step_index_, s.touched, s.touched_of, s.erased));
     if (moves_) moves_->record(drawn_scan(p.move, p.pose, std::move(before), s.touched, s.touched_of, &step.measurements), &p.move);
@@ -423,6 +424,7 @@ class FastSlam {
   ExistenceEvidence existence_;
   Assoc strategy_;
   double log_likelihood_unpaired_ = 0.0;
+  double weight_exponent_ = 1.0;     // FastSlamOptions::effective_weight_exponent
   double last_time_s_ = 0.0;
   BodyProcessNoise step_noise_;      // the step's control noise in the start frame, shared by every particle
   ComposedMotion pending_motion_;    // the controls of the deferred steps since the last one that predicted

@@ -33,10 +33,8 @@ std::string FastSlamOptions::validate() const {
   if (!(loop_drift_m > 0.0 && std::isfinite(loop_drift_m)))
     return fmt::format("loop drift must be positive and finite (got {} m)", loop_drift_m);
   if (!(roughen >= 0.0 && roughen <= 10.0)) return fmt::format("roughening must lie in [0, 10] (got {})", roughen);
-  if (!(weight_exponent >= 1e-3 && weight_exponent <= 1.0))
-    return fmt::format("weight exponent must lie in [0.001, 1] (got {})", weight_exponent);
-  if (move_window > 0 && weight_exponent != 1.0)
-    return "resample-move's acceptance targets the untempered posterior; it does not combine with a weight exponent below 1";
+  if (!(weight_exponent >= 0.0 && weight_exponent <= 1.0))
+    return fmt::format("weight exponent must lie in [0, 1], 0 for the filter's own (got {})", weight_exponent);
   if (move_window < 0 || move_window > 10000)
     return fmt::format("move window must lie in [0, 10000] scans (got {})", move_window);
   if (move_steps < 1 || move_steps > 1000) return fmt::format("move steps must lie in [1, 1000] (got {})", move_steps);

@@ -275,8 +275,10 @@ int move_particle(Particle& p, const LogTarget& log_target, int steps, double sc
 // scan, and after a resampling moves every particle.
 class ResampleMove {
  public:
-  ResampleMove(const FastSlamOptions& options, const LandmarkEkf& ekf)
-      : window_(options.move_window), steps_(options.move_steps), scale_(options.move_scale), seed_(options.seed), ekf_(ekf) {}
+  // weight_exponent: the engine's (FastSlamOptions::effective_weight_exponent).
+  ResampleMove(const FastSlamOptions& options, double weight_exponent, const LandmarkEkf& ekf)
+      : window_(options.move_window), steps_(options.move_steps), scale_(options.move_scale), seed_(options.seed),
+        weight_exponent_(weight_exponent), ekf_(ekf) {}
 
   // At a scan, before the draw: the prediction since the window's last draw, in that draw's frame.
   static void predicted(const Pose2& pose, const Mat3& pose_covariance, MoveWindow* w) {
@@ -291,7 +293,9 @@ class ResampleMove {
   double log_target(const MoveWindow& w, const std::vector<Pose2>& poses, std::vector<LandmarkEstimate>* after,
                     std::vector<std::vector<LandmarkEstimate>>* before) const {
     const auto update = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) {
-      return e ? ekf_.update(pose, z, e->id, &e->mean, &e->cov) : 0.0;
+      // The tempered likelihood the weights use (FastSlamOptions::weight_exponent): the moves target the same
+      // posterior the set stands for.
+      return e ? weight_exponent_ * ekf_.update(pose, z, e->id, &e->mean, &e->cov) : 0.0;
     };
     const auto start = [&](const Pose2& pose, const Vec2& z, LandmarkEstimate* e) { ekf_.start(pose, z, &e->mean, &e->cov); };
     return window_log_target(w, poses, update, start, after, before);
@@ -333,6 +337,7 @@ class ResampleMove {
   int steps_;
   double scale_;
   std::uint64_t seed_;
+  double weight_exponent_;
   LandmarkEkf ekf_;
 };
 

@@ -164,6 +164,12 @@ class _FilterOptions(TypedDict, total=False):
     roughen: float
     """Regularised resampling: after a resampling each particle's prediction gains the kernel (roughen *
     h_opt)^2 times the set's pose covariance (Musso et al. 2001); 0 = off, 1 = h_opt (default 0.0)"""
+    weight_exponent: float
+    """Tempered weights: raise each scan's importance weight to this power (1 = the paper's weights); below 1
+    the set selects as if the measurements were noisier, resamples less and stays consistent (the proposal and
+    the landmark updates keep the real noise). 0 = the default: 0.1 for fastslam2 with --assoc known (chosen
+    on held-out calibration data), else 1 (a real strategy's wrong pairings are weeded out by the weights;
+    fastslam1's weights are all that corrects its poses) (default 0.0)"""
     move_window: int
     """Resample-move: after each resampling every particle revises the poses of its last N scans by
     Metropolis-Hastings, pairings fixed and landmarks recomputed (Gilks & Berzuini 2001); 0 = off (default

@@ -56,6 +56,7 @@ FastSlamOptions gap_options(int move_window, std::uint64_t seed = 7) {
   o.threads = 2;
   o.seed = seed;
   o.resample_threshold = 1.0;  // resample at every scan: the depletion a long stretch of new landmarks brings
+  o.weight_exponent = 1.0;     // the paper's weights: tempered ones (the default here) deplete the set less
   o.move_window = move_window;
   return o;
 }

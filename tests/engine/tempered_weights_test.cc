@@ -2,6 +2,7 @@
 // where one weighted by the exact weights grows overconfident, it resamples less, and runs stay bit-identical
 // across map back ends and thread counts.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -50,6 +51,36 @@ TEST(TemperedWeights, KeepTheSetConsistentWhereExactWeightsGrowOverconfident) {
     EXPECT_LE(tempered.above, 5) << "weight exponent " << exponent;
     EXPECT_LT(tempered.resamples, exact.resamples / 5) << "flatter weights fall below the resampling threshold less often";
   }
+}
+
+// The default (0) tempers FastSLAM 2.0 with the true pairings only: with a real strategy the weights weed out
+// wrong pairings, and FastSLAM 1.0's weights are all that corrects its poses. result.json records what ran.
+TEST(TemperedWeights, TheDefaultTempersOnlyFastSlam2WithTheTruePairings) {
+  FastSlamOptions o;
+  EXPECT_EQ(o.effective_weight_exponent(/*true_pairings=*/true), FastSlamOptions::kTruePairingsWeightExponent);
+  EXPECT_EQ(o.effective_weight_exponent(false), 1.0);
+  o.version = FilterVersion::kFastSlam1;
+  EXPECT_EQ(o.effective_weight_exponent(true), 1.0);
+  o.weight_exponent = 0.5;
+  EXPECT_EQ(o.effective_weight_exponent(true), 0.5);
+
+  const Scenario scenario = testing::cluttered_rooms(3, 150, /*clutter=*/2.0, /*scans=*/120);
+  const auto files = [&](const std::string& assoc, double exponent, const std::string& name) {
+    RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 20, 3, 2);
+    c.assoc = assoc;
+    c.options.weight_exponent = exponent;
+    c.out_dir = testing::scratch_dir(name);
+    const RunOutput out = run_fastslam(scenario, c);
+    return std::make_pair(testing::read_file(c.out_dir + "/trajectory.tum") + testing::read_file(c.out_dir + "/map.csv"),
+                          out.result["config"]["weight_exponent"].get<double>());
+  };
+  const auto known_default = files("known", 0.0, "tempered_known_default");
+  EXPECT_EQ(known_default.second, 0.1);
+  EXPECT_TRUE(known_default.first == files("known", 0.1, "tempered_known_explicit").first);
+  EXPECT_FALSE(known_default.first == files("known", 1.0, "tempered_known_paper").first) << "the default must temper";
+  const auto jcbb_default = files("jcbb", 0.0, "tempered_jcbb_default");
+  EXPECT_EQ(jcbb_default.second, 1.0);
+  EXPECT_TRUE(jcbb_default.first == files("jcbb", 1.0, "tempered_jcbb_paper").first);
 }
 
 TEST(TemperedWeights, RunsAreBitIdenticalAcrossBackendsAndThreads) {

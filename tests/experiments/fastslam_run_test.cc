@@ -74,15 +74,18 @@ TEST(FastSlamRun, FastSlam2IsConsistentOnAShortHorizonOver30Seeds) {
 
 // Dead reckoning on the default loop drifts by metres; FastSLAM with known association stays within tens
 // of centimetres (measured on the simulator of d43e3e0, seeds 1-5: FastSLAM 1.0 ATE 0.05-0.43 m, 2.0
-// 0.07-0.34 m, dead reckoning 3.0-17.2 m; the closest to the 10 % bound is seed 1, FastSLAM 2.0 at 0.19 m
-// for 2.95 m). Seeds 1-3 here keep the test short under the sanitizers.
+// 0.07-0.34 m, dead reckoning 3.0-17.2 m). With its tempered weights (the default with known association,
+// FastSlamOptions::effective_weight_exponent) FastSLAM 2.0's plain ATE on seeds 1-8 is lower on six and higher
+// on two; the closest to the 15 % bound is seed 1 at 0.35 m for 2.95 m (with the paper's weights 0.14 m): the
+// set keeps more of the rotation about the start that no scan observes, while its aligned ATE falls from 0.054
+// to 0.043 m. Seeds 1-3 here keep the test short under the sanitizers.
 TEST(FastSlamRun, AteIsFarBelowDeadReckoning) {
   for (int s = 1; s <= 3; ++s) {
     for (auto version : {FilterVersion::kFastSlam1, FilterVersion::kFastSlam2}) {
       const RunOutput out = run_fastslam(testing::simulated_world(s, 500), testing::fastslam_config(version, 100, s, 0));
       const double ate = out.result["ate_rmse_m"].get<double>();
       const double dr = out.result["dead_reckoning_ate_m"].get<double>();
-      EXPECT_LT(ate, 0.1 * dr) << "seed " << s << " " << to_string(version);
+      EXPECT_LT(ate, 0.15 * dr) << "seed " << s << " " << to_string(version);
       EXPECT_LT(ate, 0.6) << "seed " << s << " " << to_string(version);
       EXPECT_LT(out.result["landmark_rmse_m"].get<double>(), 0.6);
     }
@@ -139,6 +142,7 @@ TEST(FastSlamRun, TheLineageAgeIsHowFarBackTheParticlesPathsMeet) {
   for (ScenarioStep& step : empty.steps) step.measurements.clear();
   const auto ages = [](const Scenario& scenario, int particles, bool record, std::string* files = nullptr) {
     RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, particles, 1, 1);
+    c.options.weight_exponent = 1.0;  // the paper's weights resample often enough for the paths to meet here
     c.record_lineage = record;
     c.out_dir = testing::scratch_dir("lineage_" + std::to_string(particles) + (record ? "_on" : "_off"));
     const RunOutput out = run_fastslam(scenario, c);

@@ -5,6 +5,7 @@
 #ifndef ARBOR_VARIANTS_ASSOCIATION_STRATEGY_LIST_H_
 #define ARBOR_VARIANTS_ASSOCIATION_STRATEGY_LIST_H_
 
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,13 @@ inline std::vector<std::string> standalone_strategy_names() {
 }
 inline std::vector<std::string> filter_strategy_names() {
   return strategy_names_where(AssociationStrategies{}, [](const StrategyTraits& t) { return t.in_filter; });
+}
+
+// Whether the strategy named `name` pairs by the scenario's true ids (StrategyTraits::uses_ground_truth).
+inline bool strategy_uses_ground_truth(std::string_view name) {
+  const std::vector<std::string> oracles =
+      strategy_names_where(AssociationStrategies{}, [](const StrategyTraits& t) { return t.uses_ground_truth; });
+  return std::find(oracles.begin(), oracles.end(), name) != oracles.end();
 }
 
 namespace internal {
