@@ -1,7 +1,8 @@
 // The gates of issue 41. Known association, the oracle, refuses no true measurement by default. With
 // --gate-covariance set, a particle set that drifted apart over a stretch without landmarks still pairs the
 // landmark it sights again, which each particle's own covariance puts outside its gate. And the new options
-// (set gating, roughened resampling) keep runs bit-identical across map back ends and thread counts.
+// (set gating, roughened resampling, tempered weights) keep runs bit-identical across map back ends and thread
+// counts.
 #include <string>
 #include <vector>
 
@@ -78,8 +79,8 @@ TEST(GateCovariance, ASetThatDriftedOverAGapPairsTheReSightedLandmark) {
 }
 
 // The rooms world with clutter (as LoopClosure.RunsAreBitIdenticalAcrossBackendsAndThreads) under JCBB, with
-// set gating and roughened resampling on.
-TEST(GateCovariance, SetGatingAndRougheningAreBitIdenticalAcrossBackendsAndThreads) {
+// set gating, roughened resampling and tempered weights on.
+TEST(GateCovariance, Issue41OptionsAreBitIdenticalAcrossBackendsAndThreads) {
   const Scenario scenario = testing::cluttered_rooms(3, 150, /*clutter=*/2.0, /*scans=*/200);
   testing::expect_bit_identical_across_backends_and_threads(
       scenario, "set_gates",
@@ -87,6 +88,7 @@ TEST(GateCovariance, SetGatingAndRougheningAreBitIdenticalAcrossBackendsAndThrea
         testing::small_jcbb_run(c);
         c.options.gate_covariance = GateCovariance::kSet;
         c.options.roughen = 1.0;
+        c.options.weight_exponent = 0.25;
       },
       [](const RunOutput& out, const std::string& what) {
         EXPECT_GT(out.result["resamples"].get<int>(), 0) << what << ": roughening acts only after a resampling";
