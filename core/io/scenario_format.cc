@@ -13,6 +13,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/text_reader.h"
+#include "core/models/ackermann_model.h"
 
 namespace arbor {
 namespace {
@@ -74,7 +75,7 @@ void check_steering(const TextReader& in, double steering, const AckermannVehicl
   if (std::abs(steering) >= lim::kMaxSteering)
     in.fail("u2", fmt::format("steering {} rad is outside the vehicle's range (|steering| < {} rad)", steering,
                               lim::kMaxSteering));
-  const double denominator = 1.0 - std::tan(steering) * car.encoder_offset_m / car.wheelbase_m;
+  const double denominator = encoder_to_axle_divisor(std::tan(steering), car);
   if (!(denominator >= lim::kMinSteeringDenominator))
     in.fail("u2", fmt::format("steering {} rad is outside the vehicle's range: 1 - tan(steering) * encoder_offset / "
                               "wheelbase = {:.3g}, below {} (the axle-centre speed divides by it)",

@@ -28,6 +28,12 @@ struct AckermannNoise {
   double q_steer = 2.5e-5;  // rad^2 s
 };
 
+// D = 1 - tan(alpha) H / L, by which the encoder's speed is divided to give the axle centre's; at D = 0 the
+// model has no answer (the scenario reader bounds it away from 0).
+inline double encoder_to_axle_divisor(double tan_alpha, const AckermannVehicle& car) {
+  return 1.0 - tan_alpha * car.encoder_offset_m / car.wheelbase_m;
+}
+
 // The laser's body-frame twist for a control, and d twist / d (v_e, alpha). With v_c = v_e / (1 - tan(alpha)
 // H / L) the axle-centre speed and k = v_c tan(alpha) / L the turn rate, the laser at (a, b) from the axle
 // centre moves with (v_c - k b, k a) and turns at k.
@@ -35,7 +41,7 @@ inline Twist ackermann_twist(const Vec3& u, const AckermannVehicle& car, Mat32* 
   const double v_e = u[0], alpha = u[1];
   const double L = car.wheelbase_m, H = car.encoder_offset_m, a = car.laser_forward_m, b = car.laser_left_m;
   const double T = std::tan(alpha), sec2 = 1.0 + T * T;
-  const double D = 1.0 - T * H / L;
+  const double D = encoder_to_axle_divisor(T, car);
   const double v_c = v_e / D;
   const double k = v_c * T / L;
   if (d_twist) {
