@@ -19,23 +19,20 @@ struct ConsistencyCount {
 };
 
 // The 30-seed average NEES per scan over the first `scans` scans of the default world (100 particles, known
-// association), counted inside the 95 % band of a consistent 3-dof estimator, [2.19, 3.93] (Bar-Shalom, Li &
-// Kirubarajan 2001, §5.4; FastSlamRun.FastSlam2IsConsistentOnAShortHorizonOver30Seeds), and above it.
+// association), counted inside the 95 % band of a consistent 3-dof estimator (testing::in_nees_band;
+// FastSlamRun.FastSlam2IsConsistentOnAShortHorizonOver30Seeds) and above it.
 ConsistencyCount consistency(double weight_exponent, int scans) {
-  const int seeds = 30;
-  std::vector<double> nees_sum(scans - 1, 0.0);
   ConsistencyCount count;
-  for (int s = 1; s <= seeds; ++s) {
+  const std::vector<double> nees = testing::average_nees_over_seeds(scans, [&](int s) {
     RunConfig c = testing::fastslam_config(FilterVersion::kFastSlam2, 100, s, 0);
     c.options.weight_exponent = weight_exponent;
     const RunOutput out = run_fastslam(testing::simulated_world(s, scans), c);
-    EXPECT_EQ(out.nees.size(), nees_sum.size());
-    for (std::size_t k = 0; k < nees_sum.size() && k < out.nees.size(); ++k) nees_sum[k] += out.nees[k];
     count.resamples += out.result["resamples"].get<int>();
-  }
-  for (double sum : nees_sum) {
-    count.inside += sum / seeds >= 2.19 && sum / seeds <= 3.93;
-    count.above += sum / seeds > 3.93;
+    return out;
+  });
+  for (double average : nees) {
+    count.inside += testing::in_nees_band(average);
+    count.above += average > testing::kNeesBandHigh;
   }
   return count;
 }

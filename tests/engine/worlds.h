@@ -107,6 +107,25 @@ inline void expect_bit_identical_across_backends_and_threads(
   }
 }
 
+// Consistency over Monte Carlo runs (Bar-Shalom, Li & Kirubarajan 2001, §5.4): the average of 30 NEES values
+// of a consistent 3-dof estimator lies in the chi2(90)/30 quantiles [2.19, 3.93] with 95 % probability.
+inline constexpr int kNeesSeeds = 30;
+inline constexpr double kNeesBandLow = 2.19, kNeesBandHigh = 3.93;
+inline bool in_nees_band(double average) { return average >= kNeesBandLow && average <= kNeesBandHigh; }
+
+// Per scan after the exactly known start (scans - 1 values; step 0 has no NEES, 0/0), the average over seeds
+// 1..kNeesSeeds of the NEES of run(seed), a run of `scans` scans.
+inline std::vector<double> average_nees_over_seeds(int scans, const std::function<RunOutput(int seed)>& run) {
+  std::vector<double> sum(scans - 1, 0.0);
+  for (int seed = 1; seed <= kNeesSeeds; ++seed) {
+    const RunOutput out = run(seed);
+    EXPECT_EQ(out.nees.size(), sum.size()) << "one NEES per scan after the exact start, seed " << seed;
+    for (std::size_t k = 0; k < sum.size() && k < out.nees.size(); ++k) sum[k] += out.nees[k];
+  }
+  for (double& v : sum) v /= kNeesSeeds;
+  return sum;
+}
+
 }  // namespace arbor::testing
 
 #endif  // ARBOR_TESTS_ENGINE_WORLDS_H_

@@ -53,21 +53,12 @@ TEST(FastSlamRun, DifferentSeedsGiveDifferentRuns) {
 // where the particle spread is only the noise floor). Measured at commit time: 11 of 20 steps inside the band,
 // the rest above it (overconfident), the worst 4.65; the longer drift is recorded in results/consistency/.
 TEST(FastSlamRun, FastSlam2IsConsistentOnAShortHorizonOver30Seeds) {
-  const int seeds = 30, steps = 21;
-  std::vector<double> nees_sum(steps, 0.0);
-  for (int s = 1; s <= seeds; ++s) {
-    const RunOutput out = run_fastslam(testing::simulated_world(s, steps), testing::fastslam_config(FilterVersion::kFastSlam2, 100, s, 0));
-    // Step 0 scans from the exactly known start: no NEES there (0/0), so out.nees[k - 1] is step k's.
-    ASSERT_EQ(out.nees.size(), static_cast<std::size_t>(steps - 1));
-    for (int k = 1; k < steps; ++k) nees_sum[k] += out.nees[k - 1];
-  }
-  int inside = 0;
-  double worst = 0.0;
-  for (int k = 1; k < steps; ++k) {
-    const double mean = nees_sum[k] / seeds;
-    inside += mean >= 2.19 && mean <= 3.93;
-    worst = std::max(worst, mean);
-  }
+  const int steps = 21;
+  const std::vector<double> nees = testing::average_nees_over_seeds(steps, [&](int s) {
+    return run_fastslam(testing::simulated_world(s, steps), testing::fastslam_config(FilterVersion::kFastSlam2, 100, s, 0));
+  });
+  const int inside = static_cast<int>(std::count_if(nees.begin(), nees.end(), testing::in_nees_band));
+  const double worst = std::ranges::max(nees);
   EXPECT_GE(inside, 10) << "steps with the 30-seed NEES inside [2.19, 3.93]";
   EXPECT_LT(worst, 5.5);
 }
