@@ -311,7 +311,8 @@ void bind_scenario(py::module_& m) {
 void bind_run(py::module_& m) {
   py::class_<RunOutput, std::shared_ptr<RunOutput>>(m, "_RunOutput")
       .def_property_readonly("result_json", [](const RunOutput& o) { return o.result.dump(); })
-      .def_property_readonly("trajectory", [](const RunOutput& o) { return poses_array(o.best_trajectory); })
+      .def_property_readonly("trajectory", [](const RunOutput& o) { return poses_array(o.trajectory); })
+      .def_property_readonly("best_trajectory", [](const RunOutput& o) { return poses_array(o.best_trajectory); })
       .def_property_readonly("trajectory_mean", [](const RunOutput& o) { return poses_array(o.mean_trajectory); })
       .def_property_readonly("map", [](const RunOutput& o) { return map_dict(o.map); })
       .def_property_readonly("steps", [](const RunOutput& o) {
@@ -454,7 +455,8 @@ void bind_filter(py::module_& m) {
       .def("estimate", &PyFilter::estimate)
       .def("last_step", &PyFilter::last_step)
       .def("best_map", [](const PyFilter& f) { return map_dict(f.filter().best_map()); })
-      .def("best_trajectory", [](const PyFilter& f) { return poses_array(f.filter().best_trajectory()); });
+      .def("best_trajectory", [](const PyFilter& f) { return poses_array(f.filter().best_trajectory()); })
+      .def("path_mean_trajectory", [](const PyFilter& f) { return poses_array(f.filter().path_mean_trajectory()); });
 }
 
 // ---- What the typed API is made from ----------------------------------------------------------------------

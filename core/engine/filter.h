@@ -29,6 +29,10 @@ class Filter {
   virtual std::vector<WeightedPose> particles() const = 0;
   // The particle of highest weight: its trajectory (oldest first) and its map (ascending id).
   virtual std::vector<TimedPose> best_trajectory() const = 0;
+  // The weighted mean of every particle's whole path under the final weights: the particle approximation of
+  // the posterior mean E[x_1:T | z_1:T] (Doucet, Godsill & Andrieu 2000), where the best particle's path is
+  // one sample of it. A filter with one estimate returns that estimate.
+  virtual std::vector<TimedPose> path_mean_trajectory() const { return best_trajectory(); }
   virtual std::vector<Landmark> best_map() const = 0;
   // Measurements the known-association gate rejected in the best particle's lineage.
   virtual std::int64_t best_rejected_measurements() const = 0;
@@ -69,6 +73,24 @@ class FilterImpl final : public Filter {
   }
   std::vector<TimedPose> best_trajectory() const override {
     return engine_.particle(engine_.best_particle()).history.to_vector();
+  }
+  std::vector<TimedPose> path_mean_trajectory() const override {
+    std::vector<TimedPose> mean = engine_.particle(0).history.to_vector();
+    std::vector<double> sin_sum(mean.size()), cos_sum(mean.size());
+    for (TimedPose& p : mean) p.pose = Pose2{0.0, 0.0, 0.0};
+    for (int i = 0; i < engine_.particle_count(); ++i) {
+      const std::vector<TimedPose> path = engine_.particle(i).history.to_vector();
+      if (path.size() != mean.size()) return best_trajectory();  // paths of different lengths: no common times
+      const double w = engine_.weight(i);
+      for (std::size_t k = 0; k < path.size(); ++k) {
+        mean[k].pose.x += w * path[k].pose.x;
+        mean[k].pose.y += w * path[k].pose.y;
+        sin_sum[k] += w * std::sin(path[k].pose.theta);
+        cos_sum[k] += w * std::cos(path[k].pose.theta);
+      }
+    }
+    for (std::size_t k = 0; k < mean.size(); ++k) mean[k].pose.theta = std::atan2(sin_sum[k], cos_sum[k]);
+    return mean;
   }
   // Without the copies that are aliases of older landmarks: they are bookkeeping of an open loop closure.
   std::vector<Landmark> best_map() const override {

@@ -35,8 +35,8 @@ void add_run_command(CLI::App& app, CommandAction* action) {
       fmt::print("{} {}{} assoc={}{}\n", config->scenario_path, to_string(config->options.version),
                  traits.has_map_backends ? " map=" + config->map : "", config->assoc,
                  traits.has_particles ? fmt::format(" particles={} seed={}", config->options.particles, config->options.seed) : "");
-      fmt::print("  ATE RMSE {} m (weighted mean {} m, dead reckoning {} m{})\n", show(r["ate_rmse_m"]),
-                 show(r["ate_mean_rmse_m"]), show(r["dead_reckoning_ate_m"]),
+      fmt::print("  ATE RMSE {} m (mean path; best particle {} m, causal mean {} m, dead reckoning {} m{})\n",
+                 show(r["ate_rmse_m"]), show(r["ate_best_rmse_m"]), show(r["ate_mean_rmse_m"]), show(r["dead_reckoning_ate_m"]),
                  r["ate_aligned"].get<bool>() ? ", SE(2)-aligned to GPS" : "");
       fmt::print("  landmark RMSE {} m, landmarks {} (true {}), pose NEES median {} (in the 95 % band at {} of scans)\n",
                  show(r["landmark_rmse_m"]), r["landmarks"].get<std::size_t>(), r["true_landmarks"].get<std::size_t>(),

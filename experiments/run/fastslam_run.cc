@@ -143,7 +143,10 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   }
   progress.finish();
 
-  const std::vector<TimedPose>& best = out.best_trajectory = filter->best_trajectory();
+  // The reported path is the posterior mean over the particles' whole paths (Filter::path_mean_trajectory);
+  // the best particle's, which its map and decisions belong to, is scored beside it.
+  const std::vector<TimedPose>& trajectory = out.trajectory = filter->path_mean_trajectory();
+  out.best_trajectory = filter->best_trajectory();
   out.reference = reference_trajectory(scenario);
   // The filter's map is its confirmed landmarks; provisional ones are counted apart.
   std::vector<Landmark>& map = out.map = filter->best_map();
@@ -161,8 +164,11 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["config"] = cli::run_config_json(config);  // every run option, under the name the command line gives it
   r["config"].update(provenance());
   r["scenario"] = scenario.metadata;
-  r.update(accuracy_fields(scenario, truth, best, map));
+  r.update(accuracy_fields(scenario, truth, trajectory, map));
   r["ate_mean_rmse_m"] = ate_mean ? Json(ate_mean->rmse_m) : Json(nullptr);
+  const Json best = accuracy_fields(scenario, truth, out.best_trajectory, {});
+  r["ate_best_rmse_m"] = best["ate_rmse_m"];
+  r["ate_best_aligned_rmse_m"] = best["ate_aligned_rmse_m"];
   // The pose NEES at scan steps: the mean is kept for comparison but a few collapse episodes dominate it;
   // the median and the share of scans inside the two-sided 95 % chi-square(3) band say more.
   r["nees_mean"] = mean_or_null(out.nees);
@@ -214,7 +220,8 @@ void write_run_files(const RunOutput& output, const std::string& out_dir) {
   forget_finished_run(out_dir);
   std::filesystem::create_directories(out_dir);
   const std::string dir = out_dir + "/";
-  write_tum(dir + "trajectory.tum", output.best_trajectory);
+  write_tum(dir + "trajectory.tum", output.trajectory);
+  write_tum(dir + "trajectory_best.tum", output.best_trajectory);
   write_tum(dir + "trajectory_mean.tum", output.mean_trajectory);
   write_reference_tum(output.reference, out_dir);
   write_map_csv(dir + "map.csv", output.map);

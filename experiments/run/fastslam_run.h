@@ -39,7 +39,8 @@ struct StepRecord {
 struct RunOutput {
   nlohmann::json result;                 // what result.json holds
   std::vector<double> nees;              // per scan with a truth pose (and some pose uncertainty)
-  std::vector<TimedPose> best_trajectory;
+  std::vector<TimedPose> trajectory;       // the reported path: the particles' paths' weighted mean
+  std::vector<TimedPose> best_trajectory;  // the best particle's path (its map and decisions go with it)
   std::vector<TimedPose> mean_trajectory;  // the weighted mean, at the start and at every scan or truth pose
   std::vector<TimedPose> reference;        // what the ATE is measured against; empty without truth or GPS
   std::vector<Landmark> map;             // the best particle's confirmed landmarks, ascending id

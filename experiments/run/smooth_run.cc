@@ -27,10 +27,13 @@ namespace {
 using Json = nlohmann::json;
 
 // The run's trajectory, and its map (run_map: the associations' run's map.csv, already read) where the
-// associations come from the same run: landmark ids are the run's own, so only then do they match.
+// associations come from the same run: landmark ids are the run's own, so only then do they match. With its
+// map, the path is the best particle's (trajectory_best.tum), the one that map was built along.
 SmootherInitialGuess read_initial_guess(const std::string& dir, const std::vector<Landmark>* run_map) {
   SmootherInitialGuess guess;
-  for (const TimedPose& p : read_tum(dir + "/trajectory.tum")) guess.trajectory.push_back({p.time_s, p.pose});
+  const std::string best = dir + "/trajectory_best.tum";
+  const std::string path = run_map && std::filesystem::exists(best) ? best : dir + "/trajectory.tum";
+  for (const TimedPose& p : read_tum(path)) guess.trajectory.push_back({p.time_s, p.pose});
   std::stable_sort(guess.trajectory.begin(), guess.trajectory.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   if (run_map)

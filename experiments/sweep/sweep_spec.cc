@@ -252,6 +252,7 @@ const std::vector<std::string>& known_metrics() {
   static const std::vector<std::string> names{
       // arbor run
       "assoc_f1", "assoc_precision", "assoc_recall", "ate_aligned", "ate_aligned_rmse_m", "ate_mean_rmse_m",
+      "ate_best_aligned_rmse_m", "ate_best_rmse_m",
       "ate_rmse_m", "budget_exhausted", "compatibility_tests", "consistency_horizon_fraction",
       "consistency_horizon_scan", "dead_reckoning_ate_m", "hypotheses",
       "landmark_rmse_m", "landmarks", "loop_closures", "map_bytes_per_particle", "map_shared_fraction", "n_eff_mean",

@@ -4,7 +4,7 @@
     scenario = arbor.simulate(world="clustered", landmarks=250, steps=300, clutter=2, seed=1)
     result = arbor.run(scenario, filter="fastslam2", map="trie", assoc="jcbb", particles=100, seed=1)
     print(result.ate_rmse_m, result.assoc_f1)      # every field of result.json is an attribute
-    result.trajectory                              # N x 4 array: t, x, y, theta (the best particle)
+    result.trajectory                              # N x 4 array: t, x, y, theta (the particles' mean path)
     result.to_dir("out/run")                       # the files `arbor run --out out/run` writes
 
 Keyword options are the command line's, with "_" for "-" (`known_gate=0.999` is `--known-gate=0.999`); they
@@ -90,8 +90,9 @@ def _default_header():
 
 
 class Result:
-    """One run: `metrics` (result.json as a dict; its fields are also attributes), `trajectory` and
-    `trajectory_mean` (N x 4: t, x, y, theta), `map` (dict: id, mean K x 2, covariance K x 2 x 2, log_odds,
+    """One run: `metrics` (result.json as a dict; its fields are also attributes), `trajectory` (the weighted
+    mean of the particles' whole paths, what ate_rmse_m scores), `best_trajectory` (the best particle's path,
+    which `map` belongs to) and `trajectory_mean` (the causal weighted mean; each N x 4: t, x, y, theta), `map` (dict: id, mean K x 2, covariance K x 2 x 2, log_odds,
     confirmed), `steps` (dict of per-step arrays: time_s, step_time_s, n_eff, resampled, landmarks,
     hypotheses, nees, scan; with record_lineage=True also ancestor_age_s, NaN where the paths share no pose
     and between scans). Arrays are copied once out of the engine."""
@@ -100,6 +101,7 @@ class Result:
         self._output = output
         self.metrics = _json.loads(output.result_json)
         self.trajectory = output.trajectory
+        self.best_trajectory = output.best_trajectory
         self.trajectory_mean = output.trajectory_mean
         self.map = output.map
         self.steps = output.steps
@@ -186,6 +188,10 @@ class Filter:
 
     def best_trajectory(self):
         return self._filter.best_trajectory()
+
+    def path_mean_trajectory(self):
+        """The weighted mean of every particle's whole path under the current weights (what a run reports)."""
+        return self._filter.path_mean_trajectory()
 
     def last_step(self):
         """What the last step did: n_eff, resampled, hypotheses, budget_exhausted, landmarks, relocalized."""

@@ -128,11 +128,12 @@ std::vector<HostileCase> review_cases() {
        kReviewRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'cov_xx': 1e\\+300 is outside"},
       {"C5", "prior_map_variance_1e_minus_300", file("m.csv", kMapHeader + "0,1,2,1e-300,0,1e-300,8,,0\n"),
        kReviewRun + "--prior-map {dir}/m.csv", 2, "m.csv:2: field 'cov_xx': 1e-300 is outside"},
-      // C2: the trajectory `smooth --associations` starts from reached Ceres as inf, or was taken when empty.
-      {"C2", "trajectory_at_1e300", run_then_edit("trajectory.tum", R"(^([^ \n]+) [^ \n]+)", "$1 1e300"), kSmoothRun1, 2,
-       "trajectory.tum:1: field 'x': 1e\\+300 is outside"},
-      {"C2", "trajectory_empty", run_then_edit("trajectory.tum", R"([\s\S]*)", ""), kSmoothRun1, 2,
-       "trajectory.tum: no poses"},
+      // C2: the trajectory `smooth --associations` starts from (the best particle's, with its map) reached Ceres
+      // as inf, or was taken when empty.
+      {"C2", "trajectory_at_1e300", run_then_edit("trajectory_best.tum", R"(^([^ \n]+) [^ \n]+)", "$1 1e300"), kSmoothRun1, 2,
+       "trajectory_best.tum:1: field 'x': 1e\\+300 is outside"},
+      {"C2", "trajectory_empty", run_then_edit("trajectory_best.tum", R"([\s\S]*)", ""), kSmoothRun1, 2,
+       "trajectory_best.tum: no poses"},
       // B4, B5: a landmark id past 32 bits was truncated into the smoothed map, and a measurement decided twice
       // took the last row.
       {"B4", "associations_id_past_32_bits", run_then_edit("associations.csv", R"(^(\d+),(\d+),-?\d+$)", "$1,$2,4294967296"),

@@ -87,7 +87,8 @@ def test_the_step_interface_reproduces_a_run(scenario):
     for k, (t, u, scan) in enumerate(zip(scenario.times, scenario.controls, scenario.scans)):
         mine = z["step"] == k
         f.step(t, u, z["range"][mine], z["bearing"][mine], scan=scan)
-    assert np.array_equal(f.best_trajectory(), result.trajectory)
+    assert np.array_equal(f.path_mean_trajectory(), result.trajectory)
+    assert np.array_equal(f.best_trajectory(), result.best_trajectory)
     confirmed = f.best_map()["confirmed"]
     assert np.array_equal(f.best_map()["mean"][confirmed], result.map["mean"])
     poses, weights = f.particles()

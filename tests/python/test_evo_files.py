@@ -1,5 +1,5 @@
-"""The TUM files of a run directory as evo reads them (docs/evo.md): trajectory.tum, trajectory_mean.tum and
-reference.tum meet evo's rules (tum_rules.py), and reference.tum is the reference result.json's ATE uses."""
+"""The TUM files of a run directory as evo reads them (docs/evo.md): trajectory.tum, trajectory_best.tum,
+trajectory_mean.tum and reference.tum meet evo's rules (tum_rules.py), and reference.tum is the reference result.json's ATE uses."""
 import pathlib
 
 import numpy as np
@@ -64,7 +64,7 @@ def test_a_run_writes_evo_ready_trajectories_and_the_reference(simulated, tmp_pa
     out = tmp_path / "run"
     arbor.cli("run", "--scenario", simulated, "--assoc", "nn", "--particles", 10, "--seed", 1, "--out", out,
               "--quiet")
-    assert_evo_reads(out, "trajectory.tum", "trajectory_mean.tum", "reference.tum")
+    assert_evo_reads(out, "trajectory.tum", "trajectory_best.tum", "trajectory_mean.tum", "reference.tum")
 
     reference = arbor_files.read_tum(out / "reference.tum")
     np.testing.assert_allclose(reference[:, 0], scenario.times)
@@ -79,6 +79,9 @@ def test_a_run_writes_evo_ready_trajectories_and_the_reference(simulated, tmp_pa
     assert np.sqrt(np.mean(np.sum(errors ** 2, axis=1))) == pytest.approx(result["ate_rmse_m"], rel=1e-6)
     assert aligned_rmse(estimate[paired, 1:3], reference[:, 1:3]) == pytest.approx(result["ate_aligned_rmse_m"],
                                                                                      rel=1e-6)
+    best = arbor_files.read_tum(out / "trajectory_best.tum")
+    assert aligned_rmse(best[np.isin(best[:, 0], reference[:, 0]), 1:3], reference[:, 1:3]) == pytest.approx(
+        result["ate_best_aligned_rmse_m"], rel=1e-6)
 
 
 def test_the_python_run_and_the_smoother_write_the_reference_too(simulated, tmp_path):
