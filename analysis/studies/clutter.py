@@ -135,7 +135,7 @@ def main(out):
         f.write("# Association in clutter: FastSLAM 2.0, 100 particles (means over runs)\n\n")
         f.write("seeds: the worlds (scenario seeds); where a study ran a world under several filter seeds, the "
                 "paired comparisons and intervals below average them first.\n\n")
-        f.write("f1: association F1 from the recorded decisions; ate_m: ATE of the best particle; ate_aligned_m: "
+        f.write("f1: association F1 from the recorded decisions; ate_m: ATE of the reported path (the best particle's before 3f0d391, the mean of the particles' paths since); ate_aligned_m: "
                 "the same after SE(2) alignment; ate_vs_known: mean aligned ATE over known association's on the same "
                 "scenarios and seeds; map_ratio: confirmed landmarks per true landmark "
                 "observed; spurious: confirmed landmarks from clutter or duplicating another.\n\n")

@@ -30,7 +30,8 @@ def recovery(run, scenario, kidnap):
     """(scans from the kidnap to the first error under the recovery threshold or None, the error WITHIN_SCANS
     scans after the kidnap, the final error); the first two are None without a kidnap (kidnap: its time)."""
     truth = read_scenario_truth(scenario)[0]
-    est = read_tum(run / "trajectory.tum")
+    best = run / "trajectory_best.tum"  # the best particle's path (runs before 3f0d391: trajectory.tum)
+    est = read_tum(best if best.exists() else run / "trajectory.tum")
     # Steps are matched by time to the microsecond: the trajectory holds every step with a truth pose.
     truth["key"] = truth.t.round(6)
     est["key"] = est.t.round(6)

@@ -48,7 +48,7 @@ def main():
         ax.plot(gps[:, 1], gps[:, 2], ".", ms=1.5, color="0.6", label="GPS")
     if len(truth):
         ax.plot(truth[:, 1], truth[:, 2], "-", lw=0.8, color="0.5", label="ground truth")
-    ax.plot(est[:, 1], est[:, 2], "-", lw=0.8, color="C0", label="estimate (best particle)")
+    ax.plot(est[:, 1], est[:, 2], "-", lw=0.8, color="C0", label="estimate (trajectory.tum)")
     if len(landmarks):
         ax.plot(landmarks[:, 0], landmarks[:, 1], "k+", ms=8, label="surveyed landmarks")
     if len(est_map):

@@ -9,7 +9,7 @@ same true landmark), `wrong` (paired with a map landmark started from another tr
 the others start provisional landmarks or are dropped, which costs nothing. A map landmark belongs to the
 true landmark (or clutter) of the measurement that started it; a prior map's landmarks belong to none, so
 pairing them counts as `wrong`.
-The pose is the best particle's lineage (trajectory.tum), matched to the truth by time.
+The pose is the best particle's lineage (trajectory_best.tum), matched to the truth by time.
 
 Usage: trace_run.py SCENARIO RUN_DIR [--from SCAN] [--to SCAN] [--csv]
 Prints one row per scan in [from, to) and a summary: the counts over the whole run, and the first scan whose
@@ -60,7 +60,8 @@ def classify(steps, decisions):
 
 def trace(scenario, run_dir):
     steps = ar.read_scenario_steps(scenario)
-    estimate = ar.read_tum(f"{run_dir}/trajectory.tum")
+    best = f"{run_dir}/trajectory_best.tum"  # the path its decisions were made along (before 3f0d391: trajectory.tum)
+    estimate = ar.read_tum(best if os.path.exists(best) else f"{run_dir}/trajectory.tum")
     # The last estimate at each time: a run writes its start pose and then step 0's at the same time.
     by_time = {round(t, 9): (x, y, th) for t, x, y, th in zip(estimate.t, estimate.x, estimate.y, estimate.theta)}
     decisions = pd.read_csv(f"{run_dir}/associations.csv")
