@@ -10,7 +10,8 @@
 # calibration-lineage|evaluation-lineage: how far back the particle set can revise its path, at 100 and 1000
 # particles, with analysis/studies/lineage.py;
 # calibration-tempering|evaluation-tempering: tempered weights, --weight-exponent;
-# calibration-estimate|evaluation-estimate: the reported path, the mean of the particles' paths or the best one)
+# calibration-estimate|evaluation-estimate: the reported path, the mean of the particles' paths or the best one;
+# evaluation-1000: known association at 1000 particles with the defaults, about 15 minutes)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -37,7 +38,7 @@ if [[ $set_name == *-kidnap ]]; then
 fi
 case $set_name in
   calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering | calibration-estimate) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate) robots="3 4 5" ;;
+  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate | evaluation-1000) robots="3 4 5" ;;
   *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc, -kidnap, -gates, -loops, -lineage or -tempering, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
