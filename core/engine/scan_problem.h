@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
 #include "core/association/association_problem.h"
@@ -29,9 +30,9 @@ struct ScanProblemScratch {
 
 // kGroundTruth: the strategy's traits ask for ground truth (StrategyTraits::uses_ground_truth). Only then do
 // the measurements' truth ids and the candidates' truth labels enter the problem, and only then is every
-// landmark in the query box that a measurement's id names a candidate, in view or not: the oracle must find
-// the landmark an id names wherever the estimate puts it (were it left out, a second landmark would start for
-// the same id). Every other strategy sees only what could be in view.
+// landmark that a measurement's id names a candidate, in view or not, in the query box or beyond it: the
+// oracle must find the landmark an id names wherever the estimate puts it (were it left out, a second landmark
+// would start for the same id). Every other strategy sees only what could be in view.
 template <bool kGroundTruth>
 class ScanProblem {
  public:
@@ -47,6 +48,11 @@ class ScanProblem {
     for (const Measurement& m : measurements)
       measurements_.push_back({m.z(), m.signature, kGroundTruth ? m.truth_id : kTruthUnknown});
     if constexpr (kGroundTruth) {
+      // Every id measured so far names a landmark each particle has mapped (the oracle starts one at its first
+      // sighting): the ids gather must find wherever the particle's drift has put them.
+      std::vector<std::int32_t> seen;
+      std::set_union(seen_ids_.begin(), seen_ids_.end(), scan_ids_.begin(), scan_ids_.end(), std::back_inserter(seen));
+      seen_ids_ = std::move(seen);
       scan_ids_.clear();
       for (const Measurement& m : measurements) scan_ids_.push_back(m.truth_id);
       std::sort(scan_ids_.begin(), scan_ids_.end());
@@ -95,6 +101,7 @@ class ScanProblem {
       const Vec2 z_hat = range_bearing_predict(pose, lm.mean);
       if (is_candidate(z_hat, margin)) fill_candidate(lm, pose, z_hat, spread, &s->problem.candidates.emplace_back());
     }
+    if constexpr (kGroundTruth) add_named_beyond_the_box(map, pose, spread, s);
   }
 
   // FastSlamOptions::gate_covariance = set: the measurements a particle at pose with covariance P predicts for
@@ -140,6 +147,27 @@ class ScanProblem {
   }
 
  private:
+  // The oracle's candidates outside the query box: a measured id that an earlier scan named, and no landmark in
+  // the box carries, names a landmark this particle mapped where its drift has since put it far away. Left
+  // out, a second landmark would start for the id and the loop would never close. A whole-map pass, paid only
+  // in that case.
+  template <LandmarkMap Map>
+  void add_named_beyond_the_box(const Map& map, const Pose2& pose, const SetSpread* spread, ScanProblemScratch* s) const {
+    std::vector<std::int32_t> missing;
+    const auto& candidates = s->problem.candidates;
+    for (std::int32_t id : scan_ids_) {
+      if (id < 0 || !std::binary_search(seen_ids_.begin(), seen_ids_.end(), id)) continue;
+      if (!missing.empty() && missing.back() == id) continue;
+      if (std::none_of(candidates.begin(), candidates.end(), [&](const AssociationCandidate& c) { return c.truth_label == id; }))
+        missing.push_back(id);
+    }
+    if (missing.empty()) return;
+    map.for_each([&](const Landmark& lm) {
+      if (std::binary_search(missing.begin(), missing.end(), lm.truth_label))
+        fill_candidate(lm, pose, range_bearing_predict(pose, lm.mean), spread, &s->problem.candidates.emplace_back());
+    });
+  }
+
   void begin_candidates(const Mat3& P, AssociationProblem* problem) const {
     problem->candidates.clear();
     problem->R = R_;
@@ -168,6 +196,7 @@ class ScanProblem {
   std::int64_t step_ = -1;
   std::vector<AssociationMeasurement> measurements_;  // this scan's, shared by every particle's problem
   std::vector<std::int32_t> scan_ids_;  // kGroundTruth: the truth ids this scan's measurements name, sorted
+  std::vector<std::int32_t> seen_ids_;  // kGroundTruth: the ids every earlier scan named, sorted and unique
 };
 
 }  // namespace arbor
