@@ -11,7 +11,8 @@
 # particles, with analysis/studies/lineage.py;
 # calibration-tempering|evaluation-tempering: tempered weights, --weight-exponent;
 # calibration-estimate|evaluation-estimate: the reported path, the mean of the particles' paths or the best one;
-# evaluation-1000: known association at 1000 particles with the defaults, about 15 minutes)
+# evaluation-1000: known association at 1000 particles with the defaults, about 15 minutes;
+# calibration-oracle|evaluation-oracle: known association reaching beyond the query box)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -37,8 +38,8 @@ if [[ $set_name == *-kidnap ]]; then
   exit 0
 fi
 case $set_name in
-  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering | calibration-estimate) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate | evaluation-1000) robots="3 4 5" ;;
+  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering | calibration-estimate | calibration-oracle) robots="1 2" ;;
+  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate | evaluation-1000 | evaluation-oracle) robots="3 4 5" ;;
   *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc, -kidnap, -gates, -loops, -lineage or -tempering, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
@@ -52,7 +53,7 @@ for spec in experiments/heldout/${set_name}_*.toml; do
   "$arbor" sweep "$spec" --out "$out/$name" --jobs 2
   $python analysis/studies/heldout.py "$out/$name" --out "$out/$name"
   [[ $set_name == *-lineage ]] && $python analysis/studies/lineage.py "$out/$name" > /dev/null
-  [[ $set_name == *-estimate ]] && $python analysis/studies/path_estimates.py "$out/$name" > /dev/null
+  [[ $set_name == *-estimate || $set_name == *-oracle ]] && $python analysis/studies/path_estimates.py "$out/$name" > /dev/null
 done
 # A study set (calibration-move, evaluation-gates, ...) ends here; the plain sets go on.
 [[ $set_name == *-* ]] && { echo "arbor: held-out $set_name set done: $out/*/heldout.md"; exit 0; }
