@@ -52,6 +52,7 @@ class ScanProblem {
       // sighting): the ids gather must find wherever the particle's drift has put them.
       std::vector<std::int32_t> seen;
       std::set_union(seen_ids_.begin(), seen_ids_.end(), scan_ids_.begin(), scan_ids_.end(), std::back_inserter(seen));
+      seen.erase(std::unique(seen.begin(), seen.end()), seen.end());  // a scan can name an id twice
       seen_ids_ = std::move(seen);
       scan_ids_.clear();
       for (const Measurement& m : measurements) scan_ids_.push_back(m.truth_id);

@@ -166,9 +166,9 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
   r["scenario"] = scenario.metadata;
   r.update(accuracy_fields(scenario, truth, trajectory, map));
   r["ate_mean_rmse_m"] = ate_mean ? Json(ate_mean->rmse_m) : Json(nullptr);
-  const Json best = accuracy_fields(scenario, truth, out.best_trajectory, {});
-  r["ate_best_rmse_m"] = best["ate_rmse_m"];
-  r["ate_best_aligned_rmse_m"] = best["ate_aligned_rmse_m"];
+  const TrajectoryErrors best = trajectory_errors(truth, out.best_trajectory);
+  r["ate_best_rmse_m"] = best.rmse_m;
+  r["ate_best_aligned_rmse_m"] = best.aligned_rmse_m;
   // The pose NEES at scan steps: the mean is kept for comparison but a few collapse episodes dominate it;
   // the median and the share of scans inside the two-sided 95 % chi-square(3) band say more.
   r["nees_mean"] = mean_or_null(out.nees);

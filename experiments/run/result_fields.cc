@@ -26,18 +26,25 @@ EvaluationTruth evaluation_truth(const Scenario& scenario) {
   return truth;
 }
 
-Json accuracy_fields(const Scenario& scenario, const EvaluationTruth& truth, const std::vector<TimedPose>& trajectory,
-                     const std::vector<Landmark>& map) {
-  const auto rmse = [](const std::optional<AteResult>& ate) { return ate ? Json(ate->rmse_m) : Json(nullptr); };
+namespace {
+Json rmse(const std::optional<AteResult>& ate) { return ate ? Json(ate->rmse_m) : Json(nullptr); }
+}  // namespace
+
+TrajectoryErrors trajectory_errors(const EvaluationTruth& truth, const std::vector<TimedPose>& trajectory) {
   const auto ate = absolute_trajectory_error(trajectory, truth.positions, truth.align);
   const auto ate_aligned = truth.align ? ate : absolute_trajectory_error(trajectory, truth.positions, true);
+  return {rmse(ate), rmse(ate_aligned), ate ? ate->alignment : Pose2{}};
+}
+
+Json accuracy_fields(const Scenario& scenario, const EvaluationTruth& truth, const std::vector<TimedPose>& trajectory,
+                     const std::vector<Landmark>& map) {
+  const TrajectoryErrors ate = trajectory_errors(truth, trajectory);
   const auto ate_dr = absolute_trajectory_error(dead_reckoning(scenario), truth.positions, truth.align);
-  return {{"ate_rmse_m", rmse(ate)},
+  return {{"ate_rmse_m", ate.rmse_m},
           {"ate_aligned", truth.align},
-          {"ate_aligned_rmse_m", rmse(ate_aligned)},
+          {"ate_aligned_rmse_m", ate.aligned_rmse_m},
           {"dead_reckoning_ate_m", rmse(ate_dr)},
-          {"landmark_rmse_m",
-           optional_number(landmark_rmse(map, scenario.truth_landmarks, ate ? ate->alignment : Pose2{}))}};
+          {"landmark_rmse_m", optional_number(landmark_rmse(map, scenario.truth_landmarks, ate.alignment))}};
 }
 
 }  // namespace arbor

@@ -30,6 +30,14 @@ struct EvaluationTruth {
 };
 EvaluationTruth evaluation_truth(const Scenario& scenario);
 
+// One trajectory's ATE RMSE in the truth's frame (aligned where the truth asks for it) and SE(2)-aligned, null
+// where there is no truth, and the alignment of the first (identity without one).
+struct TrajectoryErrors {
+  nlohmann::json rmse_m, aligned_rmse_m;
+  Pose2 alignment;
+};
+TrajectoryErrors trajectory_errors(const EvaluationTruth& truth, const std::vector<TimedPose>& trajectory);
+
 // ate_rmse_m, ate_aligned, ate_aligned_rmse_m (SE(2)-aligned, comparable with tools whose frame differs),
 // dead_reckoning_ate_m and landmark_rmse_m (in the frame the ATE aligned to); null where there is no truth.
 nlohmann::json accuracy_fields(const Scenario& scenario, const EvaluationTruth& truth,
