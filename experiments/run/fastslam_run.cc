@@ -42,7 +42,10 @@ std::string steps_csv(const std::vector<StepRecord>& steps, bool with_lineage) {
     fmt::format_to(std::back_inserter(out), "{},{},{:.9f},{},{},{},{},{},{},{}", k, s.time_s, s.step_time_s,
                    s.stats.n_eff, s.stats.resampled ? 1 : 0, s.stats.best_landmarks, s.stats.hypotheses,
                    s.nees ? fmt::format("{}", *s.nees) : "", s.stats.relocalized ? 1 : 0, s.scan ? 1 : 0);
-    if (with_lineage) out += "," + (s.ancestor_age_s ? fmt::format("{}", *s.ancestor_age_s) : std::string());
+    if (with_lineage) {
+      out += ',';
+      if (s.ancestor_age_s) fmt::format_to(std::back_inserter(out), "{}", *s.ancestor_age_s);
+    }
     out += "\n";
   }
   return out;
@@ -125,7 +128,7 @@ RunOutput run_fastslam(const Scenario& scenario, const RunConfig& config) {
     budget_exhausted += stats.budget_exhausted;
     moves_proposed += stats.moves_proposed;
     moves_accepted += stats.moves_accepted;
-    StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats, std::nullopt, step.has_scan});
+    StepRecord& record = out.steps.emplace_back(StepRecord{step.time_s, dt, stats, std::nullopt, step.has_scan, std::nullopt});
     if (config.record_lineage && step.has_scan)
       if (const auto shared = filter->common_ancestor_time_s()) record.ancestor_age_s = step.time_s - *shared;
     if (step.has_scan || step.truth_pose) {
