@@ -15,7 +15,8 @@
 # calibration-oracle|evaluation-oracle: known association reaching beyond the query box;
 # calibration-existence|evaluation-existence: the level below which negative evidence drops a landmark, with
 # JCBB, on the robots, the worlds and outdoor data (the Car Park calibrates, Victoria Park evaluates);
-# calibration-relocalize|evaluation-relocalize: --relocalize as loop closure after a gap, with JCBB)
+# calibration-relocalize|evaluation-relocalize: --relocalize as loop closure after a gap, with JCBB;
+# calibration-tempered1000|evaluation-tempered1000: JCBB at 1000 particles, weight exponent 1 or 0.1)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
 # OUT/heldout.md with analysis/studies/heldout.py. Calibration: robots 1-2 and simulated seeds 1-4, where options are
@@ -41,8 +42,8 @@ if [[ $set_name == *-kidnap ]]; then
   exit 0
 fi
 case $set_name in
-  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering | calibration-estimate | calibration-oracle | calibration-existence | calibration-relocalize) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate | evaluation-1000 | evaluation-oracle | evaluation-existence | evaluation-relocalize) robots="3 4 5" ;;
+  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering | calibration-estimate | calibration-oracle | calibration-existence | calibration-relocalize | calibration-tempered1000) robots="1 2" ;;
+  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate | evaluation-1000 | evaluation-oracle | evaluation-existence | evaluation-relocalize | evaluation-tempered1000) robots="3 4 5" ;;
   *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc, -kidnap, -gates, -loops, -lineage or -tempering, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
 esac
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
