@@ -15,7 +15,7 @@
 # calibration-oracle|evaluation-oracle: known association reaching beyond the query box;
 # calibration-existence|evaluation-existence: the level below which negative evidence drops a landmark, with
 # JCBB, on the robots, the worlds and outdoor data (the Car Park calibrates, Victoria Park evaluates);
-# calibration-relocalize|evaluation-relocalize: --relocalize as loop closure after a gap, with JCBB;
+# calibration-relocalize: --relocalize as loop closure after a gap, with JCBB;
 # calibration-tempered1000|evaluation-tempered1000: JCBB at 1000 particles, weight exponent 1 or 0.1)
 # Converts (again, so the loader's defaults are this build's) the MRCLAM Dataset 6 robots of the chosen set into out/scenarios/ (from $UTIAS, default the
 # workplace's ../shared/datasets copy, which holds all five robots), runs that set's sweeps into OUT, and writes
@@ -41,11 +41,19 @@ if [[ $set_name == *-kidnap ]]; then
   echo "arbor: held-out $set_name set done: $out/$set_name/kidnap.md"
   exit 0
 fi
+# A set is its sweep specs, experiments/heldout/SET_*.toml; calibration sets run robots 1-2, evaluation sets 3-5.
+shopt -s nullglob
+specs=(experiments/heldout/"${set_name}"_*.toml)
 case $set_name in
-  calibration | calibration-move | calibration-assoc | calibration-resample | calibration-gates | calibration-loops | calibration-lineage | calibration-tempering | calibration-estimate | calibration-oracle | calibration-existence | calibration-relocalize | calibration-tempered1000) robots="1 2" ;;
-  evaluation | evaluation-move | evaluation-assoc | evaluation-roughen | evaluation-gates | evaluation-loops | evaluation-lineage | evaluation-tempering | evaluation-estimate | evaluation-1000 | evaluation-oracle | evaluation-existence | evaluation-relocalize | evaluation-tempered1000) robots="3 4 5" ;;
-  *) echo "arbor: unknown set '$set_name' (calibration, evaluation, their -move, -assoc, -kidnap, -gates, -loops, -lineage or -tempering, evaluation-roughen, calibration-resample)" >&2; exit 2 ;;
+  calibration*) robots="1 2" ;;
+  evaluation*) robots="3 4 5" ;;
+  *) specs=() ;;
 esac
+if [ ${#specs[@]} -eq 0 ]; then
+  known=$(for f in experiments/heldout/*_*.toml; do f=${f##*/}; echo "${f%%_*}"; done | sort -u | tr '\n' ' ')
+  echo "arbor: unknown set '$set_name' (the sets: ${known}calibration-kidnap evaluation-kidnap)" >&2
+  exit 2
+fi
 utias=${UTIAS:-../shared/datasets/utias_mrclam/MRCLAM_Dataset6}
 mkdir -p out/scenarios "$out"
 for r in $robots; do
@@ -57,7 +65,7 @@ if [ -f "experiments/heldout/${set_name}_outdoor.toml" ]; then
   "$arbor" convert --from acfr-car-park --out out/scenarios/carpark.scn > /dev/null
   "$arbor" convert --from victoria-park --max-gps-speed 8 --out out/scenarios/victoria_park.scn > /dev/null
 fi
-for spec in experiments/heldout/${set_name}_*.toml; do
+for spec in "${specs[@]}"; do
   name=$(basename "$spec" .toml)
   "$arbor" sweep "$spec" --out "$out/$name" --jobs 2
   $python analysis/studies/heldout.py "$out/$name" --out "$out/$name"
